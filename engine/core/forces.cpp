@@ -1,0 +1,167 @@
+#include "engine/core/forces.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fibrenet {
+
+void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
+  Particles& p = w.particles;
+  Bonds& bonds = w.bonds;
+  const std::int64_t n_bonds = static_cast<std::int64_t>(bonds.size());
+  const double dt = w.settings.dt;
+  double inelastic = 0.0, released = 0.0;
+  int broke = 0;
+#pragma omp parallel reduction(+ : inelastic, released) reduction(| : broke)
+  {
+    Vec3* force = buffers.Force(ThreadId());
+    Vec3* torque = buffers.Torque(ThreadId());
+#pragma omp for schedule(static)
+    for (std::int64_t b = 0; b < n_bonds; ++b) {
+      if (bonds.broken[b]) continue;
+      const std::int32_t i = bonds.i[b], j = bonds.j[b];
+      const BondGeometry g{w.cell.Delta(p.x[i], p.x[j]), p.q[i], p.q[j], p.v[j] - p.v[i],
+                           p.omega[i], p.omega[j]};
+      const BondResult r = EvaluateBond(g, bonds.types[bonds.type[b]], bonds.state[b], dt);
+      inelastic += r.dissipated;
+      if (r.broken) {
+        bonds.broken[b] = 1;
+        released += r.Energy();
+        broke = 1;
+        BondBreakEvent e;
+        e.step = w.step;
+        e.bond = static_cast<std::int32_t>(b);
+        e.position = p.x[i] + 0.5 * g.d;
+        e.f_r = r.f_r;
+        e.f_s = r.f_s;
+        e.tau_b = r.tau_b;
+        e.tau_t = r.tau_t;
+        e.energy = r.Energy();
+#pragma omp critical(fibrenet_bond_events)
+        bonds.events.push_back(e);
+        continue;
+      }
+      force[i] += r.force_i;
+      force[j] -= r.force_i;
+      torque[i] += r.torque_i;
+      torque[j] += r.torque_j;
+    }
+  }
+  if (broke) {
+    // Threads append in any order; sort this step's events so runs are reproducible.
+    auto first = std::find_if(bonds.events.begin(), bonds.events.end(),
+                              [&](const BondBreakEvent& e) { return e.step == w.step; });
+    std::sort(first, bonds.events.end(),
+              [](const BondBreakEvent& a, const BondBreakEvent& b) { return a.bond < b.bond; });
+  }
+  losses.bond_inelastic += inelastic;
+  losses.released += released;
+  losses.bonds_broke = losses.bonds_broke || broke;
+}
+
+void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
+  Particles& p = w.particles;
+  NeighbourList& nl = w.neighbours;
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+  const double dt = w.settings.dt;
+  const bool friction = w.physics.friction;
+  double damping = 0.0, slip = 0.0, min_ratio = 1.0;
+#pragma omp parallel reduction(+ : damping, slip) reduction(min : min_ratio)
+  {
+    Vec3* force = buffers.Force(ThreadId());
+    Vec3* torque = buffers.Torque(ThreadId());
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Vec3 x_i = p.x[i];
+      const double r_i = p.radius[i];
+      for (std::size_t k = nl.RowBegin(i); k < nl.RowEnd(i); ++k) {
+        const std::int32_t j = nl.Partner(k);
+        const Vec3 d = w.cell.Delta(x_i, p.x[j]);
+        const double sum_radii = r_i + p.radius[j];
+        const double dist2 = d.squaredNorm();
+        if (dist2 >= sum_radii * sum_radii) {
+          nl.History(k).setZero();  // apart: the next touch starts afresh
+          continue;
+        }
+        const double dist = std::sqrt(dist2);
+        const double m_sum = p.mass[i] + p.mass[j];
+        const ContactGeometry g{d,          dist,       r_i,       p.radius[j],
+                                p.mass[i] * p.mass[j] / m_sum,      p.v[j] - p.v[i],
+                                p.omega[i], p.omega[j]};
+        const ContactResult r = EvaluateContact(g, w.contact, nl.History(k), dt, friction);
+        force[i] -= r.force_j;
+        force[j] += r.force_j;
+        torque[i] += r.torque_i;
+        torque[j] += r.torque_j;
+        damping += r.damping_power * dt;
+        slip += r.slip_loss;
+        min_ratio = std::min(min_ratio, dist / sum_radii);
+      }
+    }
+  }
+  losses.damping += damping;
+  losses.friction += slip;
+  losses.min_contact_ratio = std::min(losses.min_contact_ratio, min_ratio);
+}
+
+void AccumulateWallForces(World& w, StepLosses& losses) {
+  Particles& p = w.particles;
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+  const double dt = w.settings.dt;
+  for (Wall& wall : w.walls) {
+    if (wall.history.size() != p.size()) wall.history.assign(p.size(), Vec3::Zero());
+    const bool friction = w.physics.friction && wall.friction;
+    const Vec3 normal(0.0, 0.0, static_cast<double>(wall.side));  // points into the particles
+    double fx = 0.0, fy = 0.0, fz = 0.0, damping = 0.0, slip = 0.0, min_ratio = 1.0;
+#pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, damping, slip) \
+    reduction(min : min_ratio)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const double gap = (p.x[i].z() - wall.z) * wall.side;  // centre to wall
+      if (gap >= p.radius[i]) {
+        wall.history[i].setZero();
+        continue;
+      }
+      // The wall acts as the particle's mirror image: centre distance 2 gap, radii R, R.
+      const double dist = std::max(2.0 * gap, 1e-3 * p.radius[i]);
+      const Vec3 wall_velocity(0.0, 0.0, wall.vz);
+      const ContactGeometry g{-dist * normal, dist, p.radius[i], p.radius[i], p.mass[i],
+                              wall_velocity - p.v[i], p.omega[i], Vec3::Zero()};
+      const ContactResult r = EvaluateContact(g, w.contact, wall.history[i], dt, friction);
+      // The image sits at j = i - dist * normal; the force on i is -force_j.
+      p.force[i] -= r.force_j;
+      p.torque[i] += r.torque_i;
+      fx += r.force_j.x();
+      fy += r.force_j.y();
+      fz += r.force_j.z();
+      damping += r.damping_power * dt;
+      slip += r.slip_loss;
+      min_ratio = std::min(min_ratio, dist / (2.0 * p.radius[i]));
+    }
+    wall.reaction = Vec3(fx, fy, fz);
+    // Energy the moving wall feeds in: force on the particles times the wall's travel.
+    wall.work += -fz * wall.vz * dt;
+    losses.damping += damping;
+    losses.friction += slip;
+    losses.min_contact_ratio = std::min(losses.min_contact_ratio, min_ratio);
+  }
+}
+
+void AccumulateBodyForces(World& w) {
+  Particles& p = w.particles;
+  const Physics& ph = w.physics;
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+  if (!ph.gravity && !ph.drag && !ph.applied_loads) return;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Vec3 f = Vec3::Zero();
+    if (ph.gravity) f += p.mass[i] * ph.g;
+    if (ph.drag) f -= ph.drag_coefficient * (p.v[i] - ph.air_velocity);
+    if (ph.applied_loads) {
+      f += w.applied_force[i];
+      p.torque[i] += w.applied_torque[i];
+    }
+    p.force[i] += f;
+  }
+}
+
+}  // namespace fibrenet

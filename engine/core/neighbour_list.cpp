@@ -1,0 +1,189 @@
+#include "engine/core/neighbour_list.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace fibrenet {
+
+namespace {
+
+// Linked-cell grid over the particles' bounding box (periodic in x, y as the cell says).
+struct Grid {
+  int nx = 1, ny = 1, nz = 1;
+  Vec3 lo, size;  // origin and edge length of one grid cell
+
+  int Index(int cx, int cy, int cz) const { return (cz * ny + cy) * nx + cx; }
+  int Count() const { return nx * ny * nz; }
+};
+
+int ClampCell(double t, int n) {
+  const int c = static_cast<int>(std::floor(t));
+  return std::min(std::max(c, 0), n - 1);
+}
+
+}  // namespace
+
+void NeighbourList::BuildExclusions(std::size_t n, const Bonds& bonds) {
+  excl_offsets_.assign(n + 1, 0);
+  for (std::size_t b = 0; b < bonds.size(); ++b) {
+    if (bonds.broken[b]) continue;
+    ++excl_offsets_[bonds.i[b] + 1];
+    ++excl_offsets_[bonds.j[b] + 1];
+  }
+  for (std::size_t k = 0; k < n; ++k) excl_offsets_[k + 1] += excl_offsets_[k];
+  excl_partners_.resize(excl_offsets_[n]);
+  std::vector<std::uint32_t> fill(excl_offsets_.begin(), excl_offsets_.end() - 1);
+  for (std::size_t b = 0; b < bonds.size(); ++b) {
+    if (bonds.broken[b]) continue;
+    excl_partners_[fill[bonds.i[b]]++] = bonds.j[b];
+    excl_partners_[fill[bonds.j[b]]++] = bonds.i[b];
+  }
+}
+
+bool NeighbourList::Excluded(std::int32_t a, std::int32_t b) const {
+  for (std::uint32_t k = excl_offsets_[a]; k < excl_offsets_[a + 1]; ++k)
+    if (excl_partners_[k] == b) return true;
+  return false;
+}
+
+void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bonds, double skin) {
+  const std::size_t n = p.size();
+  skin_ = skin;
+  BuildExclusions(n, bonds);
+  double r_max = 0.0;
+  double z_lo = 0.0, z_hi = 0.0;
+  if (n > 0) {
+    z_lo = z_hi = p.x[0].z();
+    for (std::size_t i = 0; i < n; ++i) {
+      r_max = std::max(r_max, p.radius[i]);
+      z_lo = std::min(z_lo, p.x[i].z());
+      z_hi = std::max(z_hi, p.x[i].z());
+    }
+  }
+  const double cutoff = 2.0 * r_max + skin;
+
+  Grid grid;
+  grid.nx = std::max(1, static_cast<int>(std::floor(cell.Lx() / cutoff)));
+  grid.ny = std::max(1, static_cast<int>(std::floor(cell.Ly() / cutoff)));
+  grid.nz = std::max(1, std::min(static_cast<int>(std::floor((z_hi - z_lo) / cutoff)) + 1,
+                                 1 << 16));
+  grid.lo = Vec3(cell.lo.x(), cell.lo.y(), z_lo);
+  grid.size = Vec3(cell.Lx() / grid.nx, cell.Ly() / grid.ny, cutoff);
+
+  // Counting sort of particles into cells.
+  cell_of_.resize(n);
+  cell_start_.assign(grid.Count() + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3 x = p.x[i];
+    cell.Wrap(x);
+    const Vec3 t = (x - grid.lo).cwiseQuotient(grid.size);
+    const int c = grid.Index(ClampCell(t.x(), grid.nx), ClampCell(t.y(), grid.ny),
+                             ClampCell(t.z(), grid.nz));
+    cell_of_[i] = c;
+    ++cell_start_[c + 1];
+  }
+  for (int c = 0; c < grid.Count(); ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_members_.resize(n);
+  {
+    std::vector<std::int32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) cell_members_[fill[cell_of_[i]]++] = static_cast<int>(i);
+  }
+
+  // Neighbour cells of a cell, without repeats (a periodic direction may have < 3 cells).
+  auto neighbour_cells = [&](int c, std::array<int, 27>& out) {
+    const int cx = c % grid.nx, cy = (c / grid.nx) % grid.ny, cz = c / (grid.nx * grid.ny);
+    int count = 0;
+    for (int dz = -1; dz <= 1; ++dz) {
+      const int z = cz + dz;
+      if (z < 0 || z >= grid.nz) continue;
+      for (int dy = -1; dy <= 1; ++dy) {
+        int y = cy + dy;
+        if (y < 0 || y >= grid.ny) {
+          if (!cell.periodic_y) continue;
+          y = (y + grid.ny) % grid.ny;
+        }
+        for (int dx = -1; dx <= 1; ++dx) {
+          int x = cx + dx;
+          if (x < 0 || x >= grid.nx) {
+            if (!cell.periodic_x) continue;
+            x = (x + grid.nx) % grid.nx;
+          }
+          out[count++] = grid.Index(x, y, z);
+        }
+      }
+    }
+    std::sort(out.begin(), out.begin() + count);
+    return static_cast<int>(std::unique(out.begin(), out.begin() + count) - out.begin());
+  };
+
+  // Two passes over rows (count, then fill) so that rows can be built in parallel.
+  scratch_offsets_.assign(n + 1, 0);
+  auto scan_row = [&](std::size_t i, std::int32_t* out) {
+    std::array<int, 27> cells;
+    const int count = neighbour_cells(cell_of_[i], cells);
+    std::uint32_t found = 0;
+    for (int k = 0; k < count; ++k) {
+      for (int m = cell_start_[cells[k]]; m < cell_start_[cells[k] + 1]; ++m) {
+        const std::int32_t j = cell_members_[m];
+        if (j <= static_cast<std::int32_t>(i)) continue;
+        const double reach = p.radius[i] + p.radius[j] + skin;
+        if (cell.Delta(p.x[i], p.x[j]).squaredNorm() >= reach * reach) continue;
+        if (Excluded(static_cast<std::int32_t>(i), j)) continue;
+        if (out) out[found] = j;
+        ++found;
+      }
+    }
+    if (out) std::sort(out, out + found);
+    return found;
+  };
+  const std::int64_t rows = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < rows; ++i) scratch_offsets_[i + 1] = scan_row(i, nullptr);
+  for (std::size_t i = 0; i < n; ++i) scratch_offsets_[i + 1] += scratch_offsets_[i];
+  scratch_partners_.resize(scratch_offsets_[n]);
+  scratch_history_.assign(scratch_offsets_[n], Vec3::Zero());
+  // Indices are stable while the particle count is, so the old rows still apply.
+  const bool carry = offsets_.size() == n + 1 && !partners_.empty();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    scan_row(i, scratch_partners_.data() + scratch_offsets_[i]);
+    if (!carry) continue;
+    // Carry the tangential history of pairs present before (both rows are sorted).
+    std::uint32_t old = offsets_[i];
+    const std::uint32_t old_end = offsets_[i + 1];
+    for (std::uint32_t k = scratch_offsets_[i]; k < scratch_offsets_[i + 1]; ++k) {
+      while (old < old_end && partners_[old] < scratch_partners_[k]) ++old;
+      if (old < old_end && partners_[old] == scratch_partners_[k])
+        scratch_history_[k] = history_[old];
+    }
+  }
+  offsets_.swap(scratch_offsets_);
+  partners_.swap(scratch_partners_);
+  history_.swap(scratch_history_);
+  x_at_build_ = p.x;
+  valid_ = true;
+  ++builds_;
+}
+
+bool NeighbourList::NeedsRebuild(const Particles& p, const Cell& cell) const {
+  if (!valid_ || x_at_build_.size() != p.size()) return true;
+  const double limit2 = 0.25 * skin_ * skin_;
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+  int moved = 0;
+#pragma omp parallel for schedule(static) reduction(| : moved)
+  for (std::int64_t i = 0; i < n; ++i)
+    moved |= cell.Delta(x_at_build_[i], p.x[i]).squaredNorm() > limit2 ? 1 : 0;
+  return moved != 0;
+}
+
+std::size_t NeighbourList::MemoryBytes() const {
+  return offsets_.capacity() * sizeof(std::uint32_t) + partners_.capacity() * 4 +
+         history_.capacity() * sizeof(Vec3) + x_at_build_.capacity() * sizeof(Vec3) +
+         excl_offsets_.capacity() * 4 + excl_partners_.capacity() * 4 +
+         (cell_of_.capacity() + cell_start_.capacity() + cell_members_.capacity()) * 4 +
+         scratch_offsets_.capacity() * 4 + scratch_partners_.capacity() * 4 +
+         scratch_history_.capacity() * sizeof(Vec3);
+}
+
+}  // namespace fibrenet

@@ -1,0 +1,58 @@
+// Verlet neighbour list built with linked cells. Each unordered pair within
+// R_i + R_j + skin is stored once (half list, partner index > owner index), in compressed
+// rows: partners[offsets[i] .. offsets[i+1]). Bonded pairs are excluded. The list is
+// rebuilt when some particle has moved more than half the skin since the last build, so
+// no contact can be missed; the cost of a build is linear in the particle count.
+// Each entry carries the tangential history of its contact, carried over across rebuilds.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/core/bonds.h"
+#include "engine/core/cell.h"
+#include "engine/core/particles.h"
+
+namespace fibrenet {
+
+class NeighbourList {
+ public:
+  // skin: extra distance beyond contact [m], > 0.
+  void Build(const Particles& p, const Cell& cell, const Bonds& bonds, double skin);
+  bool NeedsRebuild(const Particles& p, const Cell& cell) const;
+  // Forces a rebuild at the next check (after bonds break or particles are added).
+  void Invalidate() { valid_ = false; }
+
+  std::size_t RowBegin(std::size_t i) const { return offsets_[i]; }
+  std::size_t RowEnd(std::size_t i) const { return offsets_[i + 1]; }
+  std::size_t size() const { return partners_.size(); }
+  std::int32_t Partner(std::size_t k) const { return partners_[k]; }
+  Vec3& History(std::size_t k) { return history_[k]; }
+  const Vec3& History(std::size_t k) const { return history_[k]; }
+  const std::vector<std::int32_t>& partners() const { return partners_; }
+  std::size_t builds() const { return builds_; }
+  double skin() const { return skin_; }
+  std::size_t MemoryBytes() const;
+
+ private:
+  void BuildExclusions(std::size_t n, const Bonds& bonds);
+  bool Excluded(std::int32_t a, std::int32_t b) const;
+
+  std::vector<std::uint32_t> offsets_{0};
+  std::vector<std::int32_t> partners_;
+  std::vector<Vec3> history_;
+  std::vector<Vec3> x_at_build_;
+  // Bonded partners of each particle, compressed rows.
+  std::vector<std::uint32_t> excl_offsets_;
+  std::vector<std::int32_t> excl_partners_;
+  // Scratch reused between builds: cell of each particle and particles sorted by cell.
+  std::vector<std::int32_t> cell_of_, cell_start_, cell_members_;
+  std::vector<std::uint32_t> scratch_offsets_;
+  std::vector<std::int32_t> scratch_partners_;
+  std::vector<Vec3> scratch_history_;
+  double skin_ = 0.0;
+  bool valid_ = false;
+  std::size_t builds_ = 0;
+};
+
+}  // namespace fibrenet

@@ -1,0 +1,126 @@
+#include "engine/core/simulation.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "engine/core/diagnose.h"
+#include "engine/core/error.h"
+#include "engine/core/quaternion.h"
+#include "engine/core/time_step.h"
+
+namespace fibrenet {
+
+std::string Simulation::Prepare() {
+  Particles& p = w_.particles;
+  if (w_.settings.skin <= 0.0 && p.size() > 0) {
+    double r_min = p.radius[0];
+    for (double r : p.radius) r_min = std::min(r_min, r);
+    w_.settings.skin = 0.5 * r_min;
+  }
+  if (w_.physics.applied_loads) {
+    w_.applied_force.resize(p.size(), Vec3::Zero());
+    w_.applied_torque.resize(p.size(), Vec3::Zero());
+  }
+  const std::string warning = ChooseTimeStep(w_);
+  buffers_.Prepare(p);
+  if (w_.physics.contacts) w_.neighbours.Build(p, w_.cell, w_.bonds, w_.settings.skin);
+  return warning;
+}
+
+void Simulation::ComputeForces() {
+  Particles& p = w_.particles;
+  if (w_.physics.contacts && w_.neighbours.NeedsRebuild(p, w_.cell))
+    w_.neighbours.Build(p, w_.cell, w_.bonds, w_.settings.skin);
+  buffers_.Prepare(p);
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    p.force[i].setZero();
+    p.torque[i].setZero();
+  }
+  losses_ = StepLosses{};
+  AccumulateBodyForces(w_);
+  if (w_.bonds.size() > 0) AccumulateBondForces(w_, buffers_, losses_);
+  if (w_.physics.contacts) AccumulateContactForces(w_, buffers_, losses_);
+  buffers_.Reduce();
+  if (!w_.walls.empty()) AccumulateWallForces(w_, losses_);
+}
+
+void Simulation::Step() {
+  ComputeForces();
+  Particles& p = w_.particles;
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+  std::int64_t bad = -1;
+#pragma omp parallel for schedule(static) reduction(max : bad)
+  for (std::int64_t i = 0; i < n; ++i)
+    if (!p.force[i].allFinite() || !p.torque[i].allFinite()) bad = std::max(bad, i);
+  if (bad >= 0) FailAt(static_cast<std::size_t>(bad), "non-finite force or torque");
+
+  Integrate();
+
+  EnergyLedger& e = w_.energy;
+  e.damping += losses_.damping;
+  e.friction += losses_.friction;
+  e.bond_inelastic += losses_.bond_inelastic;
+  e.released += losses_.released;
+  for (Wall& wall : w_.walls) wall.z += wall.vz * w_.settings.dt;
+  w_.min_contact_ratio = std::min(w_.min_contact_ratio, losses_.min_contact_ratio);
+  if (losses_.bonds_broke) w_.neighbours.Invalidate();
+  w_.time += w_.settings.dt;
+  ++w_.step;
+}
+
+void Simulation::Integrate() {
+  Particles& p = w_.particles;
+  const Physics& ph = w_.physics;
+  const double dt = w_.settings.dt;
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+  const double limit = w_.settings.max_step_displacement;
+  double work_gravity = 0.0, work_drag = 0.0, work_applied = 0.0;
+  std::int64_t runaway = -1;
+#pragma omp parallel for schedule(static) reduction(+ : work_gravity, work_drag, work_applied) \
+    reduction(max : runaway)
+  for (std::int64_t i = 0; i < n; ++i) {
+    p.v[i] += p.force[i] * (p.inv_mass[i] * dt);
+    p.omega[i] += p.torque[i] * (p.inv_inertia[i] * dt);
+    const Vec3 dx = p.v[i] * dt;
+    // Work of body forces over the drift x_n -> x_n+1 = x_n + v_n+1 dt.
+    if (p.inv_mass[i] > 0.0) {
+      if (ph.gravity) work_gravity += p.mass[i] * ph.g.dot(dx);
+      if (ph.drag) work_drag -= ph.drag_coefficient * (p.v[i] - ph.air_velocity).dot(dx);
+      if (ph.applied_loads)
+        work_applied += w_.applied_force[i].dot(dx) + w_.applied_torque[i].dot(p.omega[i]) * dt;
+    }
+    p.x[i] += dx;
+    w_.cell.Wrap(p.x[i]);
+    p.q[i] = (QuatFromRotationVector(p.omega[i] * dt) * p.q[i]).normalized();
+    if (!(dx.squaredNorm() <= limit * limit * p.radius[i] * p.radius[i]))
+      runaway = std::max(runaway, i);
+  }
+  w_.energy.work_gravity += work_gravity;
+  w_.energy.work_drag += work_drag;
+  w_.energy.work_applied += work_applied;
+  if (runaway >= 0)
+    FailAt(static_cast<std::size_t>(runaway),
+           fmt::format("kinetic-energy blow-up: moved more than {} radius in one step", limit));
+}
+
+void Simulation::FailAt(std::size_t particle, const std::string& cause) {
+  throw RunError(fmt::format("unstable at step {} (t = {:.6g} s, dt = {:.4g} s): particle {} "
+                             "(fibre {}): {}; largest interaction: {}",
+                             w_.step, w_.time, w_.settings.dt, particle,
+                             w_.particles.fibre[particle], cause,
+                             DescribeLargestInteraction(w_, particle)));
+}
+
+void Simulation::Run(std::int64_t steps, std::int64_t every, const std::function<void()>& observe) {
+  for (std::int64_t s = 0; s < steps; ++s) {
+    Step();
+    if (every > 0 && observe && (s + 1) % every == 0) observe();
+  }
+}
+
+std::size_t Simulation::MemoryBytes() const { return buffers_.MemoryBytes() + w_.neighbours.MemoryBytes(); }
+
+}  // namespace fibrenet

@@ -1,0 +1,26 @@
+// Planes normal to z that bound the sheet: the forming wire, pressing plates, compression
+// platens. A wall moves with a prescribed velocity; particles touch it through the same
+// van Wyk law as a fibre-fibre contact, with the wall acting as the mirror image of the
+// particle (distance 2 h between a particle and its image, radii R and R).
+#pragma once
+
+#include <vector>
+
+#include "engine/core/types.h"
+
+namespace fibrenet {
+
+struct Wall {
+  double z = 0.0;        // position [m]
+  double vz = 0.0;       // prescribed velocity [m/s]
+  int side = +1;         // +1: particles live above (a floor); -1: below (a top plate)
+  bool friction = true;  // Coulomb friction with the contact's mu
+  // Reaction of the particles on the wall during the last step [N] (z component is the
+  // pressing force) and the work the wall has done on the particles since the start [J].
+  Vec3 reaction = Vec3::Zero();
+  double work = 0.0;
+  // Tangential history of each particle against this wall (sized on first use).
+  std::vector<Vec3> history;
+};
+
+}  // namespace fibrenet
