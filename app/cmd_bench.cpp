@@ -1,0 +1,5 @@
+#include "app/commands.h"
+
+namespace fibrenet::cli {
+void AddBenchCommand(CLI::App&, Context&) {}
+}  // namespace fibrenet::cli
