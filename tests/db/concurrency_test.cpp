@@ -1,0 +1,86 @@
+// WAL mode: readers (a second ResultsDb, or any SQLite client) read the last committed state
+// while the campaign driver holds an open write transaction, without waiting for it.
+#include <SQLiteCpp/SQLiteCpp.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <future>
+#include <string>
+#include <thread>
+
+#include "db/queries.h"
+#include "db/results_db.h"
+#include "temp_db.h"
+
+namespace fibrenet::db {
+namespace {
+
+using testing::TempDbPath;
+using Clock = std::chrono::steady_clock;
+
+TEST(Concurrency, SecondConnectionReadsWhileFirstHoldsAWriteTransaction) {
+  TempDbPath path;
+  ResultsDb writer(path.str());
+  const std::int64_t c = writer.upsert_campaign("soft-strong", "spec", "h", "0.1.0", "abc");
+  writer.insert_candidate(c, 0, "k0", "cheap", {1}, {{"x", 1.0}});
+
+  // The writer opens a write transaction and leaves it uncommitted.
+  SQLite::Transaction tx(writer.connection(), SQLite::TransactionBehavior::IMMEDIATE);
+  writer.connection().exec("UPDATE campaigns SET status = 'uncommitted'");
+  writer.connection().exec(
+      "INSERT INTO candidates (campaign_id, eval_index, key, fidelity, created_at) "
+      "VALUES (1, 1, 'k1', 'cheap', 'now')");
+
+  const auto start = Clock::now();
+  {
+    // Opening for writing only reads while the schema is current, so it does not block either.
+    ResultsDb reader(path.str());
+    const auto campaigns = list_campaigns(reader);
+    ASSERT_EQ(campaigns.size(), 1u);
+    EXPECT_EQ(campaigns[0].status, "created");
+    EXPECT_EQ(campaigns[0].counts.total(), 1);
+    EXPECT_EQ(candidates(reader, "soft-strong").size(), 1u);
+  }
+  {
+    ResultsDb reader(path.str(), OpenMode::kReadOnly);
+    EXPECT_EQ(list_campaigns(reader).at(0).counts.total(), 1);
+  }
+  {
+    // A plain SQLite client, as a user's sqlite3 shell or Python script would be.
+    SQLite::Database shell(path.str(), SQLite::OPEN_READONLY);
+    EXPECT_EQ(shell.execAndGet("SELECT count(*) FROM candidate_summary").getInt(), 1);
+  }
+  // Had any reader waited for the lock, it would have taken the busy timeout (10 s).
+  EXPECT_LT(Clock::now() - start, std::chrono::seconds(2));
+
+  tx.commit();
+  ResultsDb reader(path.str(), OpenMode::kReadOnly);
+  EXPECT_EQ(list_campaigns(reader).at(0).status, "uncommitted");
+  EXPECT_EQ(list_campaigns(reader).at(0).counts.total(), 2);
+}
+
+TEST(Concurrency, ASecondWriterWaitsForTheLockThenSucceeds) {
+  TempDbPath path;
+  ResultsDb db(path.str());
+  const std::int64_t c = db.upsert_campaign("soft-strong", "spec", "h", "0.1.0", "abc");
+
+  // Another process (here a thread with its own connection) holds the write lock briefly.
+  std::promise<void> locked;
+  std::thread other([&] {
+    SQLite::Database conn(path.str(), SQLite::OPEN_READWRITE);
+    SQLite::Transaction tx(conn, SQLite::TransactionBehavior::IMMEDIATE);
+    locked.set_value();
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    tx.commit();
+  });
+  locked.get_future().wait();
+  const auto start = Clock::now();
+  // The busy timeout makes this write wait for the lock instead of failing at once.
+  EXPECT_NO_THROW(db.insert_candidate(c, 0, "k0", "cheap", {}, {}));
+  EXPECT_GE(Clock::now() - start, std::chrono::milliseconds(200));
+  other.join();
+  EXPECT_EQ(candidates(db, "soft-strong").size(), 1u);
+}
+
+}  // namespace
+}  // namespace fibrenet::db
