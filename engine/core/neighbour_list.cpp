@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 namespace fibrenet {
 
@@ -184,6 +185,28 @@ std::size_t NeighbourList::MemoryBytes() const {
          (cell_of_.capacity() + cell_start_.capacity() + cell_members_.capacity()) * 4 +
          scratch_offsets_.capacity() * 4 + scratch_partners_.capacity() * 4 +
          scratch_history_.capacity() * sizeof(Vec3);
+}
+
+std::vector<PairHistory> NeighbourList::ExportHistory() const {
+  std::vector<PairHistory> out;
+  for (std::size_t i = 0; i + 1 < offsets_.size(); ++i)
+    for (std::size_t k = offsets_[i]; k < offsets_[i + 1]; ++k)
+      if (!history_[k].isZero(0.0))
+        out.push_back({static_cast<std::int32_t>(i), partners_[k], history_[k]});
+  return out;
+}
+
+void NeighbourList::ImportHistory(const std::vector<PairHistory>& history) {
+  for (const PairHistory& h : history) {
+    if (h.i < 0 || static_cast<std::size_t>(h.i) + 1 >= offsets_.size())
+      throw std::invalid_argument("contact history names a particle outside the list");
+    const auto first = partners_.begin() + offsets_[h.i];
+    const auto last = partners_.begin() + offsets_[h.i + 1];
+    const auto it = std::lower_bound(first, last, h.j);
+    if (it == last || *it != h.j)
+      throw std::invalid_argument("contact history names a pair the neighbour list lacks");
+    history_[it - partners_.begin()] = h.xi;
+  }
 }
 
 }  // namespace fibrenet

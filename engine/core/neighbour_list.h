@@ -15,6 +15,12 @@
 
 namespace fibrenet {
 
+// The tangential history of one touching pair, for snapshots.
+struct PairHistory {
+  std::int32_t i = 0, j = 0;  // i < j
+  Vec3 xi = Vec3::Zero();
+};
+
 class NeighbourList {
  public:
   // skin: extra distance beyond contact [m], > 0.
@@ -33,6 +39,12 @@ class NeighbourList {
   std::size_t builds() const { return builds_; }
   double skin() const { return skin_; }
   std::size_t MemoryBytes() const;
+
+  // Histories of all pairs with a non-zero tangential history, in row order.
+  std::vector<PairHistory> ExportHistory() const;
+  // Restores histories into a freshly built list; a pair that the list lacks is an error
+  // (std::invalid_argument), since a touching pair is always within the list's reach.
+  void ImportHistory(const std::vector<PairHistory>& history);
 
  private:
   void BuildExclusions(std::size_t n, const Bonds& bonds);

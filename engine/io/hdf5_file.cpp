@@ -1,0 +1,111 @@
+#include "engine/io/hdf5_file.h"
+
+#include <fmt/format.h>
+
+#include "engine/core/error.h"
+
+namespace fibrenet::io {
+
+namespace {
+
+// Closes an HDF5 handle when it goes out of scope.
+struct Handle {
+  hid_t id;
+  herr_t (*close)(hid_t);
+  ~Handle() {
+    if (id >= 0) close(id);
+  }
+};
+
+}  // namespace
+
+Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by our exceptions
+  file_ = mode == Mode::kCreate ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)
+                                : H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file_ < 0)
+    throw Error(fmt::format("{}: cannot {} HDF5 file", path,
+                            mode == Mode::kCreate ? "create" : "open"));
+}
+
+Hdf5File::~Hdf5File() {
+  if (file_ >= 0) H5Fclose(file_);
+}
+
+void Hdf5File::CreateGroup(const std::string& name) {
+  Handle g{H5Gcreate2(file_, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
+  if (g.id < 0) throw Error(fmt::format("{}: cannot create group {}", path_, name));
+}
+
+bool Hdf5File::Exists(const std::string& name) const {
+  return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+namespace {
+
+template <typename T>
+void Write(hid_t file, const std::string& path, const std::string& name, hid_t type,
+           const std::vector<T>& data, std::size_t cols) {
+  const hsize_t dims[2] = {cols ? data.size() / cols : 0, cols};
+  Handle space{H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose};
+  Handle set{H5Dcreate2(file, name.c_str(), type, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+             H5Dclose};
+  if (set.id < 0 || (!data.empty() && H5Dwrite(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                                               data.data()) < 0))
+    throw Error(fmt::format("{}: cannot write dataset {}", path, name));
+}
+
+template <typename T>
+std::vector<T> Read(hid_t file, const std::string& path, const std::string& name, hid_t type,
+                    std::size_t cols) {
+  Handle set{H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose};
+  if (set.id < 0) throw Error(fmt::format("{}: missing dataset {}", path, name));
+  Handle space{H5Dget_space(set.id), H5Sclose};
+  hsize_t dims[2] = {0, 1};
+  const int rank = H5Sget_simple_extent_dims(space.id, dims, nullptr);
+  if (rank < 1 || (rank == 2 && dims[1] != cols) || (rank == 1 && cols != 1))
+    throw Error(fmt::format("{}: dataset {} has the wrong shape", path, name));
+  std::vector<T> data(dims[0] * cols);
+  if (!data.empty() && H5Dread(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
+    throw Error(fmt::format("{}: cannot read dataset {}", path, name));
+  return data;
+}
+
+}  // namespace
+
+void Hdf5File::WriteDoubles(const std::string& name, const std::vector<double>& data,
+                            std::size_t cols) {
+  Write(file_, path_, name, H5T_NATIVE_DOUBLE, data, cols);
+}
+
+void Hdf5File::WriteInts(const std::string& name, const std::vector<std::int64_t>& data,
+                         std::size_t cols) {
+  Write(file_, path_, name, H5T_NATIVE_INT64, data, cols);
+}
+
+std::vector<double> Hdf5File::ReadDoubles(const std::string& name, std::size_t cols) const {
+  return Read<double>(file_, path_, name, H5T_NATIVE_DOUBLE, cols);
+}
+
+std::vector<std::int64_t> Hdf5File::ReadInts(const std::string& name, std::size_t cols) const {
+  return Read<std::int64_t>(file_, path_, name, H5T_NATIVE_INT64, cols);
+}
+
+void Hdf5File::WriteAttribute(const std::string& name, double value) {
+  Handle space{H5Screate(H5S_SCALAR), H5Sclose};
+  Handle attr{H5Acreate2(file_, name.c_str(), H5T_NATIVE_DOUBLE, space.id, H5P_DEFAULT,
+                         H5P_DEFAULT),
+              H5Aclose};
+  if (attr.id < 0 || H5Awrite(attr.id, H5T_NATIVE_DOUBLE, &value) < 0)
+    throw Error(fmt::format("{}: cannot write attribute {}", path_, name));
+}
+
+double Hdf5File::ReadAttribute(const std::string& name) const {
+  Handle attr{H5Aopen(file_, name.c_str(), H5P_DEFAULT), H5Aclose};
+  double value = 0.0;
+  if (attr.id < 0 || H5Aread(attr.id, H5T_NATIVE_DOUBLE, &value) < 0)
+    throw Error(fmt::format("{}: missing attribute {}", path_, name));
+  return value;
+}
+
+}  // namespace fibrenet::io

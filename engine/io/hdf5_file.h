@@ -1,0 +1,41 @@
+// A thin RAII layer over the HDF5 C API: a file, and reading/writing whole 1-D and 2-D
+// datasets of doubles and integers, plus scalar attributes. Errors throw fibrenet::Error
+// naming the file and the dataset.
+#pragma once
+
+#include <hdf5.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fibrenet::io {
+
+class Hdf5File {
+ public:
+  enum class Mode { kCreate, kRead };
+  Hdf5File(const std::string& path, Mode mode);
+  ~Hdf5File();
+  Hdf5File(const Hdf5File&) = delete;
+  Hdf5File& operator=(const Hdf5File&) = delete;
+
+  const std::string& path() const { return path_; }
+  void CreateGroup(const std::string& name);
+  bool Exists(const std::string& name) const;
+
+  // Row-major arrays of rows x cols (cols = 1 for a vector).
+  void WriteDoubles(const std::string& name, const std::vector<double>& data, std::size_t cols);
+  void WriteInts(const std::string& name, const std::vector<std::int64_t>& data, std::size_t cols);
+  std::vector<double> ReadDoubles(const std::string& name, std::size_t cols) const;
+  std::vector<std::int64_t> ReadInts(const std::string& name, std::size_t cols) const;
+
+  // Scalar attributes on the root group.
+  void WriteAttribute(const std::string& name, double value);
+  double ReadAttribute(const std::string& name) const;
+
+ private:
+  hid_t file_ = -1;
+  std::string path_;
+};
+
+}  // namespace fibrenet::io
