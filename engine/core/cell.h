@@ -18,17 +18,31 @@ struct Cell {
   double Ly() const { return hi.y() - lo.y(); }
 
   // Shortest vector from a to b under the periodic images (minimum image convention).
+  // Hot: runs for every pair every step. |d| <= L/2 (almost every pair) skips the division
+  // and the rounding, which would leave d unchanged there anyway, so results are identical.
   Vec3 Delta(const Vec3& a, const Vec3& b) const {
     Vec3 d = b - a;
-    if (periodic_x) d.x() -= Lx() * std::nearbyint(d.x() / Lx());
-    if (periodic_y) d.y() -= Ly() * std::nearbyint(d.y() / Ly());
+    if (periodic_x) d.x() = MinimumImage(d.x(), Lx());
+    if (periodic_y) d.y() = MinimumImage(d.y(), Ly());
     return d;
   }
 
-  // Maps a position back into [lo, hi) along the periodic directions.
+  // Maps a position back into [lo, hi) along the periodic directions. A position already
+  // inside (t in [0, 1)) is left as it is, which is what the floor would give.
   void Wrap(Vec3& p) const {
-    if (periodic_x) p.x() -= Lx() * std::floor((p.x() - lo.x()) / Lx());
-    if (periodic_y) p.y() -= Ly() * std::floor((p.y() - lo.y()) / Ly());
+    if (periodic_x) p.x() = WrapInto(p.x(), lo.x(), Lx());
+    if (periodic_y) p.y() = WrapInto(p.y(), lo.y(), Ly());
+  }
+
+ private:
+  static double MinimumImage(double d, double L) {
+    if (std::abs(d) <= 0.5 * L) return d;
+    return d - L * std::nearbyint(d / L);
+  }
+  static double WrapInto(double x, double lo, double L) {
+    const double t = (x - lo) / L;
+    if (t >= 0.0 && t < 1.0) return x;
+    return x - L * std::floor(t);
   }
 };
 

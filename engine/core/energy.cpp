@@ -51,8 +51,10 @@ EnergyReport MeasureEnergy(const World& w) {
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double gap = (p.x[i].z() - wall.z) * wall.side;
       if (gap >= p.radius[i]) continue;
+      // The wall pushes with F(2 gap) of the mirror-image pair, so the potential of that force
+      // over the gap is half the pair's energy (which is the integral over 2 gap).
       const NormalResult nr = EvaluateVanWyk(2.0 * gap, 2.0 * p.radius[i], w.contact.normal);
-      r.strain.contacts += nr.energy;
+      r.strain.contacts += 0.5 * nr.energy;
       if (w.physics.friction && wall.friction && i < wall.history.size())
         r.strain.contacts +=
             0.5 * w.contact.tangential_ratio * nr.stiffness * wall.history[i].squaredNorm();

@@ -80,7 +80,10 @@ void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses
         const double sum_radii = r_i + p.radius[j];
         const double dist2 = d.squaredNorm();
         if (dist2 >= sum_radii * sum_radii) {
-          nl.History(k).setZero();  // apart: the next touch starts afresh
+          // Apart: the next touch starts afresh. Most pairs are apart and already clear;
+          // writing only when needed keeps their cache lines clean.
+          Vec3& xi = nl.History(k);
+          if (xi.x() != 0.0 || xi.y() != 0.0 || xi.z() != 0.0) xi.setZero();
           continue;
         }
         const double dist = std::sqrt(dist2);
@@ -118,7 +121,8 @@ void AccumulateWallForces(World& w, StepLosses& losses) {
     for (std::int64_t i = 0; i < n; ++i) {
       const double gap = (p.x[i].z() - wall.z) * wall.side;  // centre to wall
       if (gap >= p.radius[i]) {
-        wall.history[i].setZero();
+        Vec3& xi = wall.history[i];
+        if (xi.x() != 0.0 || xi.y() != 0.0 || xi.z() != 0.0) xi.setZero();
         continue;
       }
       // The wall acts as the particle's mirror image: centre distance 2 gap, radii R, R.

@@ -46,4 +46,26 @@ inline Quat FrameAlongAxis(const Vec3& axis) {
   return Quat::FromTwoVectors(Vec3::UnitX(), axis);
 }
 
+// Left Jacobian of SO(3) at the rotation vector phi: exp(phi + delta) = exp(J_l(phi) delta)
+// exp(phi) to first order in delta. Its inverse maps a small world-side rotation gamma onto
+// the change of the rotation vector: log(exp(gamma) exp(phi)) = phi + J_l^-1(phi) gamma.
+// Series below 1e-3 rad, where the closed forms lose digits.
+inline Mat3 LeftJacobian(const Vec3& phi) {
+  const double a = phi.norm(), a2 = a * a;
+  Mat3 K;
+  K << 0.0, -phi.z(), phi.y(), phi.z(), 0.0, -phi.x(), -phi.y(), phi.x(), 0.0;
+  const double c1 = a < 1e-3 ? 0.5 - a2 / 24.0 : (1.0 - std::cos(a)) / a2;
+  const double c2 = a < 1e-3 ? 1.0 / 6.0 - a2 / 120.0 : (a - std::sin(a)) / (a2 * a);
+  return Mat3::Identity() + c1 * K + c2 * K * K;
+}
+
+inline Mat3 InverseLeftJacobian(const Vec3& phi) {
+  const double a = phi.norm(), a2 = a * a;
+  Mat3 K;
+  K << 0.0, -phi.z(), phi.y(), phi.z(), 0.0, -phi.x(), -phi.y(), phi.x(), 0.0;
+  const double c2 = a < 1e-3 ? 1.0 / 12.0 + a2 / 720.0
+                             : 1.0 / a2 - std::cos(0.5 * a) / (2.0 * a * std::sin(0.5 * a));
+  return Mat3::Identity() - 0.5 * K + c2 * K * K;
+}
+
 }  // namespace fibrenet

@@ -48,14 +48,26 @@ void Simulation::ComputeForces() {
 }
 
 void Simulation::Step() {
-  ComputeForces();
   Particles& p = w_.particles;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
-  std::int64_t bad = -1;
-#pragma omp parallel for schedule(static) reduction(max : bad)
+  // A non-finite state (set from outside, e.g. by a prescribed motion) is named before its
+  // forces spread it to the neighbours. The smallest bad index is reported.
+  std::int64_t bad = n;
+#pragma omp parallel for schedule(static) reduction(min : bad)
   for (std::int64_t i = 0; i < n; ++i)
-    if (!p.force[i].allFinite() || !p.torque[i].allFinite()) bad = std::max(bad, i);
-  if (bad >= 0) FailAt(static_cast<std::size_t>(bad), "non-finite force or torque");
+    if (!p.x[i].allFinite() || !p.v[i].allFinite() || !p.q[i].coeffs().allFinite() ||
+        !p.omega[i].allFinite())
+      bad = std::min(bad, i);
+  if (bad < n)
+    FailAt(static_cast<std::size_t>(bad), "non-finite position, velocity, orientation or spin");
+  double wall_work = 0.0;
+  for (const Wall& wall : w_.walls) wall_work -= wall.work;
+  ComputeForces();
+  for (const Wall& wall : w_.walls) wall_work += wall.work;
+#pragma omp parallel for schedule(static) reduction(min : bad)
+  for (std::int64_t i = 0; i < n; ++i)
+    if (!p.force[i].allFinite() || !p.torque[i].allFinite()) bad = std::min(bad, i);
+  if (bad < n) FailAt(static_cast<std::size_t>(bad), "non-finite force or torque");
 
   Integrate();
 
@@ -64,6 +76,7 @@ void Simulation::Step() {
   e.friction += losses_.friction;
   e.bond_inelastic += losses_.bond_inelastic;
   e.released += losses_.released;
+  e.work_walls += wall_work;
   for (Wall& wall : w_.walls) wall.z += wall.vz * w_.settings.dt;
   w_.min_contact_ratio = std::min(w_.min_contact_ratio, losses_.min_contact_ratio);
   if (losses_.bonds_broke) w_.neighbours.Invalidate();

@@ -180,8 +180,17 @@ inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, B
     return r;  // no force from the step it breaks on: released energy is r.Energy()
   }
 
+  // Torques are the exact derivatives of the energy with respect to each particle's
+  // rotation, so that the bond is conservative at any deformation. The moment acts through
+  // the inverse Jacobian of the rotation vector: m_world = A J_l^-T(theta) m_local, with A the
+  // frame B_i. The moment d x f of the force pair is shared through the mid frame, which
+  // turns by P = J_l(theta/2) J_l^-1(theta) / 2 of a relative rotation: (I - A P^T A^T) to i,
+  // A P^T A^T to j (half each for small theta). Both keep angular momentum exact.
+  const Mat3 A = B_i.toRotationMatrix();
+  const Mat3 Jinv = InverseLeftJacobian(theta);
+  const Mat3 share_j = A * (0.5 * LeftJacobian(0.5 * theta) * Jinv).transpose() * A.transpose();
   Vec3 f_i = R_m * f_local;
-  const Vec3 m_world = R_m * m_local;
+  const Vec3 m_world = A * (Jinv.transpose() * m_local);
   Vec3 couple = Vec3::Zero();
 
   if (p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0) {
@@ -197,12 +206,13 @@ inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, B
     r.dissipated += (f_damp.dot(v_r) + p.damping_rot * w_rel.squaredNorm()) * dt;
   }
 
-  // The force pair f_i, -f_i is offset by d: half of its moment goes to each particle so
-  // that angular momentum is conserved exactly.
-  const Vec3 half_moment = 0.5 * g.d.cross(f_i);
+  // The force pair f_i, -f_i is offset by d: its moment is shared so that angular momentum
+  // is conserved exactly (see above; damping forces share it the same way).
+  const Vec3 moment = g.d.cross(f_i);
+  const Vec3 moment_j = share_j * moment;
   r.force_i = f_i;
-  r.torque_i = m_world + couple + half_moment;
-  r.torque_j = -m_world - couple + half_moment;
+  r.torque_i = m_world + couple + (moment - moment_j);
+  r.torque_j = -m_world - couple + moment_j;
   return r;
 }
 

@@ -1,8 +1,13 @@
 // Non-bonded contact between two spheres, composed of parts (as LAMMPS GRANULAR does):
 //   normal law   van Wyk / Matsuo (van_wyk_normal.h),
-//   damping      viscous, c = 2 zeta sqrt(m_eff k(d)) with zeta from the restitution
-//                coefficient e: zeta = -ln e / sqrt(pi^2 + ln^2 e) (exact for a linear
-//                spring; the validation reports the restitution actually reached),
+//   damping      viscous, c = 2 zeta sqrt(m_eff k(d)), never pulling the pair together
+//                (the total normal force stays >= 0). zeta is calibrated from the
+//                restitution coefficient e for that capped law in its gentle-impact limit,
+//                where van Wyk is a linear spring: the contact ends when the force reaches
+//                zero, not at zero overlap, so the linear-spring zeta = -ln e / sqrt(pi^2 +
+//                ln^2 e) would rebound too fast (e = 0.5 gave 0.55). Harder impacts reach
+//                the stiffening part of the law and rebound slightly slower (validation
+//                case `restitution`, docs/validation-particles.md),
 //   friction     Cundall-Strack: a tangential spring k_tan = tangential_ratio * k(d) on the
 //                accumulated tangential displacement xi (per-contact history, rotated into
 //                the current tangent plane every step), capped by Coulomb mu F_n (slip).
@@ -26,12 +31,15 @@ struct ContactParams {
 
   // Derived once from restitution; not user-set.
   double zeta = 0.0;
-  void Derive() {
-    const double ln_e = std::log(restitution);
-    zeta = restitution >= 1.0 ? 0.0 : -ln_e / std::sqrt(kPi * kPi + ln_e * ln_e);
-  }
+  // Sets zeta so that a gentle head-on impact rebounds with `restitution` (see above).
+  void Derive();
   std::string Validate() const;
 };
+
+// Restitution coefficient of a linear spring-dashpot contact whose total force may not
+// become attractive, as a function of the damping ratio zeta >= 0 (closed form: the contact
+// ends when k y + c y' = 0). Monotonically decreasing from 1 at zeta = 0.
+double CappedRestitution(double zeta);
 
 struct ContactGeometry {
   Vec3 d;            // x_j - x_i (minimum image) [m]

@@ -1,0 +1,309 @@
+// The core loop (engine/core/simulation.h, neighbour_list.h, time_step.h): the Verlet list
+// against a brute-force search, its rebuild on displacement, the time-step policy, the
+// error on a non-finite state, and determinism for a given thread count.
+#include "engine/core/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "engine/core/error.h"
+#include "engine/core/parallel.h"
+#include "engine/core/time_step.h"
+
+namespace fibrenet {
+namespace {
+
+using Pairs = std::vector<std::pair<int, int>>;
+
+Pairs ListedPairs(const NeighbourList& nl, std::size_t n) {
+  Pairs out;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = nl.RowBegin(i); k < nl.RowEnd(i); ++k)
+      out.emplace_back(static_cast<int>(i), nl.Partner(k));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Every unordered pair within R_i + R_j + skin under the minimum image, bonded pairs left out.
+Pairs BruteForcePairs(const Particles& p, const Cell& cell, const Bonds& bonds, double skin) {
+  Pairs bonded;
+  for (std::size_t b = 0; b < bonds.size(); ++b)
+    if (!bonds.broken[b])
+      bonded.emplace_back(std::min(bonds.i[b], bonds.j[b]), std::max(bonds.i[b], bonds.j[b]));
+  std::sort(bonded.begin(), bonded.end());
+  Pairs out;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const double reach = p.radius[i] + p.radius[j] + skin;
+      if (cell.Delta(p.x[i], p.x[j]).squaredNorm() >= reach * reach) continue;
+      const std::pair<int, int> ij(static_cast<int>(i), static_cast<int>(j));
+      if (std::binary_search(bonded.begin(), bonded.end(), ij)) continue;
+      out.push_back(ij);
+    }
+  }
+  return out;
+}
+
+// Random spheres in a cell of edge `width` (periodic or not in x, y), z in [0, height].
+World RandomWorld(std::mt19937& rng, int n, double width, double height, bool periodic) {
+  World w;
+  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+  w.cell.hi = Vec3(width, width, 1e-3);
+  w.cell.periodic_x = w.cell.periodic_y = periodic;
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < n; ++k) {
+    const double r = 12e-6 + 8e-6 * u(rng);
+    w.particles.Add(Vec3(width * u(rng), width * u(rng), height * u(rng)), r, 8e-12, k);
+  }
+  return w;
+}
+
+// Bonds between some close pairs (they must be left out of the list) and some far ones.
+void AddSomeBonds(World& w, std::mt19937& rng) {
+  const std::int32_t type = w.bonds.AddType(BeamBondParams::FromBeam(10e9, 3e9, 16e-6, 32e-6));
+  const Pairs close = BruteForcePairs(w.particles, w.cell, w.bonds, 10e-6);
+  for (std::size_t k = 0; k < close.size(); k += 2)
+    w.bonds.Add(close[k].first, close[k].second, type, BondKind::kFibreFibre, BondState{});
+  std::uniform_int_distribution<int> any(0, static_cast<int>(w.particles.size()) - 1);
+  for (int k = 0; k < 20; ++k) {
+    const int a = any(rng), b = any(rng);
+    if (a != b) w.bonds.Add(a, b, type, BondKind::kFibre, BondState{});
+  }
+}
+
+TEST(NeighbourList, FindsExactlyTheBruteForcePairs) {
+  std::mt19937 rng(1);
+  struct Setup {
+    int n;
+    double width, height;
+    bool periodic;
+  };
+  // Dense and sparse, periodic and open, and cells only two or three grid cells wide.
+  for (const Setup s : {Setup{400, 0.5e-3, 0.1e-3, true}, Setup{400, 0.5e-3, 0.1e-3, false},
+                        Setup{150, 0.13e-3, 0.05e-3, true}, Setup{100, 0.17e-3, 0.0, true},
+                        Setup{200, 0.6e-3, 0.3e-3, true}}) {
+    World w = RandomWorld(rng, s.n, s.width, s.height, s.periodic);
+    AddSomeBonds(w, rng);
+    const double skin = 8e-6;
+    w.neighbours.Build(w.particles, w.cell, w.bonds, skin);
+    const Pairs brute = BruteForcePairs(w.particles, w.cell, w.bonds, skin);
+    EXPECT_EQ(ListedPairs(w.neighbours, w.particles.size()), brute) << s.n << " " << s.width;
+    EXPECT_FALSE(brute.empty());
+  }
+}
+
+TEST(NeighbourList, LeavesOutBondsUntilTheyBreak) {
+  std::mt19937 rng(2);
+  World w = RandomWorld(rng, 200, 0.3e-3, 0.05e-3, true);
+  AddSomeBonds(w, rng);
+  ASSERT_GT(w.bonds.size(), 0u);
+  for (std::size_t b = 0; b < w.bonds.size(); b += 3) w.bonds.broken[b] = 1;
+  w.neighbours.Build(w.particles, w.cell, w.bonds, 5e-6);
+  EXPECT_EQ(ListedPairs(w.neighbours, w.particles.size()),
+            BruteForcePairs(w.particles, w.cell, w.bonds, 5e-6));
+}
+
+TEST(NeighbourList, IsRebuiltWhenAParticleMovesHalfTheSkin) {
+  World w;
+  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+  w.cell.hi = Vec3(1e-3, 1e-3, 1e-3);
+  w.physics.contacts = true;
+  w.contact.Derive();
+  const double R = 16e-6, skin = 8e-6;
+  w.settings.skin = skin;
+  // Two spheres 2R + 1.2 skin apart: outside the list's reach at the first build.
+  w.particles.Add(Vec3(0.5e-3, 0.5e-3, 0.0), R, 8e-12, 0);
+  w.particles.Add(Vec3(0.5e-3 + 2 * R + 1.2 * skin, 0.5e-3, 0.0), R, 8e-12, 1);
+  // A third near the periodic face, to cross it.
+  w.particles.Add(Vec3(1e-3 - 0.05 * skin, 0.2e-3, 0.0), R, 8e-12, 2);
+  Simulation sim(w);
+  sim.Prepare();
+  const std::size_t builds = w.neighbours.builds();
+  EXPECT_EQ(w.neighbours.size(), 0u);
+
+  // Crossing the periodic face by a tenth of the skin is a small move, not a jump of Lx.
+  w.particles.x[2].x() += 0.1 * skin;
+  w.cell.Wrap(w.particles.x[2]);
+  ASSERT_LT(w.particles.x[2].x(), 0.5e-3);
+  // Just under half the skin: no rebuild.
+  w.particles.x[1].x() -= 0.49 * skin;
+  EXPECT_FALSE(w.neighbours.NeedsRebuild(w.particles, w.cell));
+  sim.ComputeForces();
+  EXPECT_EQ(w.neighbours.builds(), builds);
+  // Past half the skin: rebuilt, and the pair, now overlapping, is found and pushes.
+  w.particles.x[1].x() -= 0.72 * skin;  // now 2R - 0.01 skin apart
+  EXPECT_TRUE(w.neighbours.NeedsRebuild(w.particles, w.cell));
+  sim.ComputeForces();
+  EXPECT_EQ(w.neighbours.builds(), builds + 1);
+  EXPECT_EQ(w.neighbours.size(), 1u);
+  EXPECT_GT(w.particles.force[1].x(), 0.0);
+  EXPECT_LT(w.particles.force[0].x(), 0.0);
+}
+
+// A straight chain of n bonded spheres along x.
+void AddChain(World& w, int n, double spacing) {
+  const std::int32_t type = w.bonds.AddType(BeamBondParams::FromBeam(10e9, 3e9, 16e-6, spacing));
+  const std::size_t first = w.particles.size();
+  for (int k = 0; k < n; ++k)
+    w.particles.Add(Vec3(k * spacing, 0.0, 0.0) + Vec3(1e-4, 1e-4, 0.0), 16e-6, 8e-12, 0);
+  for (int k = 0; k + 1 < n; ++k) {
+    const auto a = static_cast<std::int32_t>(first + k);
+    w.bonds.Add(a, a + 1, type, BondKind::kFibre,
+                MakeBondState(Vec3(spacing, 0, 0), Quat::Identity(), Quat::Identity()));
+  }
+}
+
+World ChainWorld() {
+  World w;
+  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+  w.cell.hi = Vec3(1e-3, 1e-3, 1e-3);
+  AddChain(w, 6, 32e-6);
+  return w;
+}
+
+TEST(TimeStep, TooLargeAStepIsReducedWithAWarning) {
+  World w = ChainWorld();
+  const double dt_crit = CriticalTimeStep(w).dt_crit;
+  ASSERT_GT(dt_crit, 0.0);
+  w.settings.policy = TimeStepPolicy::kReduce;
+  w.settings.dt = 10.0 * w.settings.safety * dt_crit;
+  Simulation sim(w);
+  const std::string warning = sim.Prepare();
+  EXPECT_NE(warning.find("exceeds"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("reduced"), std::string::npos) << warning;
+  EXPECT_DOUBLE_EQ(w.settings.dt, w.settings.safety * dt_crit);
+}
+
+TEST(TimeStep, TooLargeAStepIsRefusedWithARunError) {
+  World w = ChainWorld();
+  const double dt_crit = CriticalTimeStep(w).dt_crit;
+  w.settings.policy = TimeStepPolicy::kRefuse;
+  w.settings.dt = 10.0 * w.settings.safety * dt_crit;
+  Simulation sim(w);
+  try {
+    sim.Prepare();
+    FAIL() << "a step 10x too large was accepted";
+  } catch (const RunError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("exceeds"), std::string::npos) << what;
+    EXPECT_NE(what.find("bond"), std::string::npos) << what;  // names what limits the step
+  }
+}
+
+TEST(TimeStep, AStepWithinTheLimitIsKeptAndZeroChoosesOne) {
+  World w = ChainWorld();
+  const double dt_crit = CriticalTimeStep(w).dt_crit;
+  w.settings.policy = TimeStepPolicy::kRefuse;
+  w.settings.dt = 0.3 * dt_crit;
+  Simulation sim(w);
+  EXPECT_EQ(sim.Prepare(), "");
+  EXPECT_EQ(w.settings.dt, 0.3 * dt_crit);
+
+  World automatic = ChainWorld();
+  Simulation sim2(automatic);
+  EXPECT_EQ(sim2.Prepare(), "");
+  EXPECT_DOUBLE_EQ(automatic.settings.dt, automatic.settings.safety * dt_crit);
+}
+
+void ExpectRunErrorNaming(Simulation& sim, std::int64_t step, std::size_t particle) {
+  try {
+    sim.Run(10);
+    FAIL() << "a non-finite state did not stop the run";
+  } catch (const RunError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(fmt::format("step {}", step)), std::string::npos) << what;
+    EXPECT_NE(what.find(fmt::format("particle {} ", particle)), std::string::npos) << what;
+    EXPECT_NE(what.find("non-finite"), std::string::npos) << what;
+  }
+}
+
+TEST(Instability, NaNInABondedParticleStopsTheRunNamingStepAndParticle) {
+  World w = ChainWorld();
+  w.physics.contacts = true;
+  w.contact.Derive();
+  Simulation sim(w);
+  sim.Prepare();
+  sim.Run(5);
+  w.particles.x[3].y() = std::nan("");
+  ExpectRunErrorNaming(sim, 5, 3);
+}
+
+TEST(Instability, NaNInALoneParticleStopsTheRun) {
+  World w = ChainWorld();
+  const std::size_t lone = w.particles.Add(Vec3(5e-4, 5e-4, 0.0), 16e-6, 8e-12, 1);
+  Simulation sim(w);
+  sim.Prepare();
+  sim.Run(2);
+  w.particles.v[lone].z() = std::numeric_limits<double>::infinity();
+  ExpectRunErrorNaming(sim, 2, lone);
+}
+
+// Two crossing chains falling on a floor with friction: bonds, contacts, walls, gravity.
+World BusyWorld() {
+  World w;
+  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+  w.cell.hi = Vec3(0.4e-3, 0.4e-3, 1e-3);
+  w.physics.gravity = true;
+  w.physics.g = Vec3(0.0, 0.0, -5e3);  // strong, so that contacts form within a short run
+  w.physics.contacts = true;
+  w.physics.friction = true;
+  w.contact.restitution = 0.5;
+  w.contact.Derive();
+  w.walls.push_back(Wall{});
+  AddChain(w, 12, 32e-6);
+  const std::size_t first = w.particles.size();
+  AddChain(w, 12, 32e-6);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (std::size_t i = first; i < w.particles.size(); ++i) {
+    // Rotate the second chain by 90 degrees about z, lift it, and cross the periodic face.
+    const Vec3 x = w.particles.x[i] - Vec3(1e-4, 1e-4, 0.0);
+    w.particles.x[i] = Vec3(2e-4, 0.3e-3 + x.x(), 33e-6);  // 1 um above the lower chain
+    w.cell.Wrap(w.particles.x[i]);
+  }
+  for (std::size_t i = 0; i < w.particles.size(); ++i) {
+    w.particles.x[i].z() += 17e-6;
+    w.particles.v[i] = 0.05 * Vec3(n(rng), n(rng), n(rng));
+    if (i >= first) w.particles.v[i].z() -= 5.0;  // the upper chain hits the lower one
+  }
+  // Rebuild the second chain's bond rest states from its new layout.
+  for (std::size_t b = 11; b < w.bonds.size(); ++b) {
+    const auto a = w.bonds.i[b], c = w.bonds.j[b];
+    w.bonds.state[b] = MakeBondState(w.cell.Delta(w.particles.x[a], w.particles.x[c]),
+                                     w.particles.q[a], w.particles.q[c]);
+  }
+  return w;
+}
+
+TEST(Determinism, SameSetupAndThreadCountGiveBitIdenticalPositions) {
+  const int saved = ThreadCount();
+  SetThreadCount(2);
+  std::vector<Vec3> runs[2];
+  std::size_t contacts = 0;
+  for (auto& positions : runs) {
+    World w = BusyWorld();
+    Simulation sim(w);
+    sim.Prepare();
+    sim.Run(600);
+    positions = w.particles.x;
+    for (std::size_t i = 0; i < w.particles.size(); ++i)
+      for (std::size_t k = w.neighbours.RowBegin(i); k < w.neighbours.RowEnd(i); ++k)
+        contacts += w.neighbours.History(k).norm() > 0.0;  // touching with friction history
+  }
+  SetThreadCount(saved);
+  EXPECT_GT(contacts, 0u);
+  EXPECT_GT(runs[0][0].norm(), 0.0);
+  ASSERT_EQ(runs[0].size(), runs[1].size());
+  EXPECT_EQ(std::memcmp(runs[0].data(), runs[1].data(), runs[0].size() * sizeof(Vec3)), 0);
+}
+
+}  // namespace
+}  // namespace fibrenet

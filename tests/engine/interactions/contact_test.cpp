@@ -1,0 +1,203 @@
+// Law-level checks of the non-bonded contact (engine/interactions/contact.h,
+// van_wyk_normal.h): paper Eq. 4 and its energy, force = -dE/dd, Newton's third law and the
+// balance of angular momentum with friction, symmetry under swapping i and j, the Coulomb
+// cap, the rotation of the tangential history, and the damping calibration.
+#include "engine/interactions/contact.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace fibrenet {
+namespace {
+
+constexpr double kRi = 16e-6, kRj = 12e-6, kSum = kRi + kRj;
+
+// Eq. 4 and its integral from d to R_i + R_j, written out independently of the law.
+double Eq4Force(double d) { return 0.00026 * (std::pow(kSum / d, 3.45) - 1.0); }
+double Eq4Energy(double d) {
+  const double C = 0.00026, g = 3.45;
+  return C * (kSum / (g - 1.0) * (std::pow(kSum / d, g - 1.0) - 1.0) - (kSum - d));
+}
+
+Vec3 RandomUnit(std::mt19937& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  return Vec3(n(rng), n(rng), n(rng)).normalized();
+}
+
+// A touching pair at centre distance `ratio` (R_i + R_j) with random relative motion.
+ContactGeometry RandomPair(std::mt19937& rng, double ratio) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  const double dist = ratio * kSum;
+  ContactGeometry g{dist * RandomUnit(rng), dist, kRi, kRj, 3e-12,
+                    0.1 * Vec3(n(rng), n(rng), n(rng)), 1e4 * Vec3(n(rng), n(rng), n(rng)),
+                    1e4 * Vec3(n(rng), n(rng), n(rng))};
+  return g;
+}
+
+ContactParams Defaults(double restitution = 1.0) {
+  ContactParams p;
+  p.restitution = restitution;
+  p.Derive();
+  return p;
+}
+
+TEST(VanWyk, ReproducesEquation4AndItsEnergy) {
+  const VanWykParams p;
+  EXPECT_DOUBLE_EQ(p.C, 0.00026);
+  EXPECT_DOUBLE_EQ(p.g, 3.45);
+  for (double ratio : {0.999, 0.95, 0.9, 0.8, 0.7, 0.6, 0.51}) {
+    const double d = ratio * kSum;
+    const NormalResult r = EvaluateVanWyk(d, kSum, p);
+    EXPECT_NEAR(r.force, Eq4Force(d), 1e-12 * Eq4Force(d)) << ratio;
+    EXPECT_NEAR(r.energy, Eq4Energy(d), 1e-9 * Eq4Energy(d)) << ratio;
+    EXPECT_NEAR(r.stiffness, 0.00026 * 3.45 * std::pow(kSum / d, 3.45) / d, 1e-12 * r.stiffness);
+  }
+  const NormalResult apart = EvaluateVanWyk(1.01 * kSum, kSum, p);
+  EXPECT_EQ(apart.force, 0.0);
+  EXPECT_EQ(apart.energy, 0.0);
+}
+
+TEST(VanWyk, StiffBranchContinuesOnTheTangentAndStaysFinite) {
+  const VanWykParams p;
+  const double d_lin = p.linear_below * kSum;
+  const NormalResult at = EvaluateVanWyk(d_lin, kSum, p);
+  for (double d : {0.4 * kSum, 0.1 * kSum, 1e-6 * kSum, 0.0}) {
+    const NormalResult r = EvaluateVanWyk(d, kSum, p);
+    EXPECT_NEAR(r.force, at.force + at.stiffness * (d_lin - d), 1e-12 * r.force);
+    EXPECT_DOUBLE_EQ(r.stiffness, at.stiffness);
+    EXPECT_TRUE(std::isfinite(r.energy));
+  }
+}
+
+TEST(VanWyk, ForceIsMinusTheEnergyDerivative) {
+  const VanWykParams p;
+  for (double ratio : {0.99, 0.9, 0.75, 0.6, 0.52, 0.45, 0.3}) {
+    const double d = ratio * kSum, h = 1e-6 * kSum;
+    const double fd = (EvaluateVanWyk(d - h, kSum, p).energy - EvaluateVanWyk(d + h, kSum, p).energy) / (2 * h);
+    const NormalResult r = EvaluateVanWyk(d, kSum, p);
+    EXPECT_NEAR(fd, r.force, 1e-6 * r.force) << ratio;
+    const double dk = (EvaluateVanWyk(d - h, kSum, p).force - EvaluateVanWyk(d + h, kSum, p).force) / (2 * h);
+    EXPECT_NEAR(dk, r.stiffness, 1e-6 * r.stiffness) << ratio;
+  }
+}
+
+TEST(Contact, NewtonsThirdLawAndAngularMomentumWithFriction) {
+  std::mt19937 rng(1);
+  const ContactParams p = Defaults(0.7);
+  for (int trial = 0; trial < 50; ++trial) {
+    const ContactGeometry g = RandomPair(rng, 0.7 + 0.29 * (trial % 10) / 10.0);
+    Vec3 xi = 1e-9 * RandomUnit(rng);
+    const ContactResult r = EvaluateContact(g, p, xi, 1e-8, true);
+    // The force on i is -force_j by construction; the torques must balance the moment of
+    // the force pair about any point: d x F_j + T_i + T_j = 0.
+    const Vec3 net = g.d.cross(r.force_j) + r.torque_i + r.torque_j;
+    EXPECT_LT(net.norm(), 1e-12 * kSum * r.force_j.norm()) << trial;
+    EXPECT_GE(r.normal_force, 0.0);
+  }
+}
+
+TEST(Contact, SwappingIAndJGivesTheSameForcesAndTorques) {
+  std::mt19937 rng(2);
+  const ContactParams p = Defaults(0.5);
+  for (int trial = 0; trial < 50; ++trial) {
+    const ContactGeometry g = RandomPair(rng, 0.6 + 0.39 * (trial % 10) / 10.0);
+    const ContactGeometry s{-g.d, g.dist, g.r_j, g.r_i, g.m_eff, -g.v_rel, g.omega_j, g.omega_i};
+    const Vec3 start = 2e-10 * RandomUnit(rng);
+    Vec3 xi = start, xi_swapped = -start;  // the history seen from the other side
+    const ContactResult a = EvaluateContact(g, p, xi, 1e-8, true);
+    const ContactResult b = EvaluateContact(s, p, xi_swapped, 1e-8, true);
+    const double f = a.force_j.norm(), t = a.torque_i.norm() + a.torque_j.norm() + 1e-30;
+    EXPECT_LT((b.force_j + a.force_j).norm(), 1e-12 * f) << trial;  // on old i
+    EXPECT_LT((b.torque_i - a.torque_j).norm(), 1e-9 * t) << trial;
+    EXPECT_LT((b.torque_j - a.torque_i).norm(), 1e-9 * t) << trial;
+    EXPECT_LT((xi_swapped + xi).norm(), 1e-12 * xi.norm() + 1e-30) << trial;
+    EXPECT_NEAR(b.slip_loss, a.slip_loss, 1e-12 * a.slip_loss + 1e-30);
+  }
+}
+
+TEST(Contact, FrictionIsCappedAtMuTimesTheNormalForce) {
+  std::mt19937 rng(3);
+  const ContactParams p = Defaults(0.8);
+  for (int trial = 0; trial < 20; ++trial) {
+    const ContactGeometry g = RandomPair(rng, 0.9);
+    const Vec3 n = g.d / g.dist;
+    // A history far beyond the Coulomb limit: the contact must slip to exactly mu F_n.
+    Vec3 xi = RandomUnit(rng);
+    xi = 1e-6 * (xi - xi.dot(n) * n).normalized();
+    const ContactResult r = EvaluateContact(g, p, xi, 1e-8, true);
+    const Vec3 f_t = r.force_j - r.force_j.dot(n) * n;
+    EXPECT_NEAR(f_t.norm(), p.mu * r.normal_force, 1e-12 * r.normal_force);
+    EXPECT_GT(r.slip_loss, 0.0);
+    // The stored history is the spring stretch that gives the capped force.
+    const double k_t = p.tangential_ratio * EvaluateVanWyk(g.dist, kSum, p.normal).stiffness;
+    EXPECT_NEAR(xi.norm() * k_t, p.mu * r.normal_force, 1e-9 * p.mu * r.normal_force);
+    // Below the cap there is no slip.
+    Vec3 small = 1e-15 * (RandomUnit(rng).cross(n)).normalized();
+    const ContactResult stick = EvaluateContact(g, p, small, 0.0, true);
+    EXPECT_EQ(stick.slip_loss, 0.0);
+    EXPECT_LT((stick.force_j - stick.force_j.dot(n) * n).norm(), p.mu * stick.normal_force);
+  }
+}
+
+TEST(Contact, HistoryIsRotatedIntoTheNewTangentPlaneKeepingItsLength) {
+  std::mt19937 rng(4);
+  ContactParams p = Defaults();
+  p.mu = 1e9;  // no slip: the history is only rotated
+  for (int trial = 0; trial < 20; ++trial) {
+    const Vec3 n_old = RandomUnit(rng);
+    Vec3 xi = 1e-10 * (RandomUnit(rng).cross(n_old)).normalized();
+    const double length = xi.norm();
+    // The pair has turned: a new normal, no relative motion (dt = 0 adds no displacement).
+    const Vec3 n_new = (n_old + 0.3 * RandomUnit(rng)).normalized();
+    const ContactGeometry g{0.9 * kSum * n_new, 0.9 * kSum, kRi, kRj, 3e-12,
+                            Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+    EvaluateContact(g, p, xi, 0.0, true);
+    EXPECT_NEAR(xi.norm(), length, 1e-12 * length);
+    EXPECT_LT(std::abs(xi.dot(n_new)), 1e-12 * length);
+  }
+}
+
+TEST(Contact, DampingNeverPullsThePairTogether) {
+  const ContactParams p = Defaults(0.1);
+  // Separating fast at a light overlap: the damping would exceed the spring force.
+  const ContactGeometry g{Vec3(0.999 * kSum, 0, 0), 0.999 * kSum, kRi, kRj, 3e-12,
+                          Vec3(10.0, 0, 0), Vec3::Zero(), Vec3::Zero()};
+  Vec3 xi = Vec3::Zero();
+  const ContactResult r = EvaluateContact(g, p, xi, 1e-8, false);
+  EXPECT_EQ(r.normal_force, 0.0);
+  EXPECT_GE(r.damping_power, 0.0);
+}
+
+// A linear spring-dashpot whose total force may not pull, integrated finely.
+double NumericCappedRestitution(double zeta) {
+  double y = 0.0, v = 1.0;
+  const double h = 1e-5;
+  for (int k = 1; k < 10000000; ++k) {
+    v += (-y - 2.0 * zeta * v) * h;
+    y += v * h;
+    if (y + 2.0 * zeta * v <= 0.0) return -v;
+  }
+  return -1.0;
+}
+
+TEST(ContactDamping, CappedRestitutionMatchesTheDashpotIntegral) {
+  for (double zeta : {0.02, 0.1, 0.3, 0.6, 0.9, 1.0, 1.5, 4.0})
+    EXPECT_NEAR(CappedRestitution(zeta), NumericCappedRestitution(zeta), 2e-5) << zeta;
+  EXPECT_EQ(CappedRestitution(0.0), 1.0);
+}
+
+TEST(ContactDamping, DeriveInvertsTheRestitution) {
+  for (double e : {0.05, 0.2, 0.5, 0.8, 0.95, 0.999}) {
+    const ContactParams p = Defaults(e);
+    EXPECT_NEAR(CappedRestitution(p.zeta), e, 1e-12) << e;
+    // More damping than the linear-spring formula, whose contact would end at zero overlap.
+    const double ln_e = std::log(e);
+    EXPECT_GT(p.zeta, -ln_e / std::sqrt(kPi * kPi + ln_e * ln_e)) << e;
+  }
+  EXPECT_EQ(Defaults(1.0).zeta, 0.0);
+}
+
+}  // namespace
+}  // namespace fibrenet
