@@ -1,68 +1,171 @@
-// Per-thread force and torque accumulators. Interaction loops run over pairs in parallel
-// and write both partners; each thread adds into its own buffer (thread 0 straight into
-// the particle arrays) and the buffers are summed in a fixed order afterwards, so results
-// are identical run to run for a given thread count.
+// Race-free force accumulation for the pair loops (bonds, contacts), which run in parallel
+// and write both partners. The particles are split into one contiguous index range per
+// thread. Each thread adds straight into the particle arrays when the particle lies in its
+// own range, and queues the contribution otherwise; after the loop each thread applies the
+// queues aimed at its range, from thread 0's queue up. Pair loops hand each thread the
+// interactions of its own range (rows of the neighbour list, bonds sorted by particle), so
+// with particles ordered in space only pairs that straddle a range boundary are queued.
+//
+// This replaced one full force and torque copy per extra thread, summed over all particles
+// every step: that cost 48 bytes per particle per thread and a pass over all of them; the
+// queues cost only what crosses a boundary (docs/performance.md).
+//
+// Determinism: the order of the additions into a particle depends only on the thread
+// count, so results are identical run to run for a given thread count; with one thread
+// every addition is direct, in the order of the serial loop.
 #pragma once
 
+#include <algorithm>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
-#include "engine/core/particles.h"
+#include "engine/core/bonds.h"
 #include "engine/core/parallel.h"
+#include "engine/core/particles.h"
 
 namespace fibrenet {
 
 class ForceBuffers {
  public:
-  // Sizes the buffers for the particles and the current thread count. Buffers are kept
-  // zeroed by Reduce, so this only allocates when the sizes change.
-  void Prepare(Particles& p) {
+  // A contribution for a particle outside the writing thread's range.
+  struct Queued {
+    std::int32_t i;
+    Vec3 force, torque;
+  };
+
+  // What one thread writes with. Add() is the only way a pair loop touches forces.
+  class Writer {
+   public:
+    Writer(ForceBuffers& b, int range)
+        : force_(b.force_->data()),
+          torque_(b.torque_->data()),
+          lo_(b.bounds_[range]),
+          hi_(b.bounds_[range + 1]),
+          buffers_(&b),
+          range_(range) {}
+
+    void Add(std::int32_t i, const Vec3& f, const Vec3& t) {
+      if (i >= lo_ && i < hi_) {
+        force_[i] += f;
+        torque_[i] += t;
+      } else {
+        buffers_->Queue(range_, i).push_back({i, f, t});
+      }
+    }
+    // Adds -f: the reaction of a pair force (a - f and a + (-f) are the same in IEEE).
+    void AddReaction(std::int32_t i, const Vec3& f, const Vec3& t) {
+      if (i >= lo_ && i < hi_) {
+        force_[i] -= f;
+        torque_[i] += t;
+      } else {
+        buffers_->Queue(range_, i).push_back({i, -f, t});
+      }
+    }
+
+   private:
+    Vec3* force_;
+    Vec3* torque_;
+    std::int64_t lo_, hi_;
+    ForceBuffers* buffers_;
+    int range_;
+  };
+
+  // Splits the particles (and the bonds, see BondRange) among the current thread count.
+  // Cheap when nothing changed; call before each force evaluation.
+  void Prepare(Particles& p, const Bonds& bonds) {
     force_ = &p.force;
     torque_ = &p.torque;
-    const int threads = ThreadCount();
-    const std::size_t extra = threads > 1 ? threads - 1 : 0;
-    if (extra_force_.size() != extra) {
-      extra_force_.assign(extra, {});
-      extra_torque_.assign(extra, {});
+    const int ranges = std::max(1, ThreadCount());
+    const std::size_t n = p.size();
+    if (ranges != ranges_ || n != n_) {
+      ranges_ = ranges;
+      n_ = n;
+      bounds_.resize(ranges + 1);
+      for (int r = 0; r <= ranges; ++r)
+        bounds_[r] = static_cast<std::int64_t>(n * static_cast<std::size_t>(r) / ranges);
+      queues_.assign(static_cast<std::size_t>(ranges) * ranges, {});
+      bond_key_ = {};  // the bond split follows the particle split
     }
-    for (std::size_t b = 0; b < extra; ++b) {
-      if (extra_force_[b].size() == p.size()) continue;
-      extra_force_[b].assign(p.size(), Vec3::Zero());
-      extra_torque_[b].assign(p.size(), Vec3::Zero());
+    const std::pair<const void*, std::size_t> key{bonds.i.data(), bonds.size()};
+    if (key != bond_key_) {
+      bond_key_ = key;
+      SplitBonds(bonds);
     }
   }
 
-  Vec3* Force(int thread) { return thread == 0 ? force_->data() : extra_force_[thread - 1].data(); }
-  Vec3* Torque(int thread) {
-    return thread == 0 ? torque_->data() : extra_torque_[thread - 1].data();
+  int Ranges() const { return ranges_; }
+  // Particles [first, second) of range r.
+  std::pair<std::int64_t, std::int64_t> ParticleRange(int r) const {
+    return {bounds_[r], bounds_[r + 1]};
   }
+  // Bonds [first, second) handed to range r: those whose first particle lies in the range
+  // when the bonds are sorted by it, an even split otherwise.
+  std::pair<std::int64_t, std::int64_t> BondRange(int r) const {
+    return {bond_bounds_[r], bond_bounds_[r + 1]};
+  }
+  Writer WriterFor(int range) { return Writer(*this, range); }
 
-  // Adds the other threads' buffers into the particle arrays and clears them.
+  // Applies the queued contributions, each range by its owner, sources in thread order,
+  // and empties the queues (keeping their memory). Call outside a parallel region.
   void Reduce() {
-    if (extra_force_.empty()) return;
-    const std::int64_t n = static_cast<std::int64_t>(force_->size());
+    bool any = false;
+    for (const auto& q : queues_) any = any || !q.empty();
+    if (!any) return;
     Vec3* f = force_->data();
     Vec3* t = torque_->data();
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) {
-      for (std::size_t b = 0; b < extra_force_.size(); ++b) {
-        f[i] += extra_force_[b][i];
-        t[i] += extra_torque_[b][i];
-        extra_force_[b][i].setZero();
-        extra_torque_[b][i].setZero();
+    const int ranges = ranges_;
+#pragma omp parallel for schedule(static, 1)
+    for (int dst = 0; dst < ranges; ++dst) {
+      for (int src = 0; src < ranges; ++src) {
+        std::vector<Queued>& q = queues_[static_cast<std::size_t>(src) * ranges + dst];
+        for (const Queued& e : q) {
+          f[e.i] += e.force;
+          t[e.i] += e.torque;
+        }
+        q.clear();
       }
     }
   }
 
   std::size_t MemoryBytes() const {
-    std::size_t bytes = 0;
-    for (const auto& b : extra_force_) bytes += 2 * b.capacity() * sizeof(Vec3);
+    std::size_t bytes = (bounds_.capacity() + bond_bounds_.capacity()) * sizeof(std::int64_t);
+    for (const auto& q : queues_) bytes += q.capacity() * sizeof(Queued);
     return bytes;
   }
 
  private:
+  std::vector<Queued>& Queue(int src, std::int32_t i) {
+    // The owner of i: ranges are equal splits, so start from the proportional guess.
+    int dst = static_cast<int>(static_cast<std::int64_t>(i) * ranges_ / std::max<std::int64_t>(1, n_));
+    dst = std::min(std::max(dst, 0), ranges_ - 1);
+    while (dst > 0 && i < bounds_[dst]) --dst;
+    while (dst + 1 < ranges_ && i >= bounds_[dst + 1]) ++dst;
+    return queues_[static_cast<std::size_t>(src) * ranges_ + dst];
+  }
+
+  void SplitBonds(const Bonds& bonds) {
+    const std::int64_t nb = static_cast<std::int64_t>(bonds.size());
+    bond_bounds_.assign(ranges_ + 1, nb);
+    bond_bounds_[0] = 0;
+    if (std::is_sorted(bonds.i.begin(), bonds.i.end())) {
+      for (int r = 1; r < ranges_; ++r)
+        bond_bounds_[r] =
+            std::lower_bound(bonds.i.begin(), bonds.i.end(), bounds_[r]) - bonds.i.begin();
+    } else {
+      for (int r = 1; r < ranges_; ++r) bond_bounds_[r] = nb * r / ranges_;
+    }
+  }
+
   std::vector<Vec3>* force_ = nullptr;
   std::vector<Vec3>* torque_ = nullptr;
-  std::vector<std::vector<Vec3>> extra_force_, extra_torque_;
+  int ranges_ = 0;
+  std::size_t n_ = 0;
+  std::vector<std::int64_t> bounds_{0, 0};
+  std::vector<std::int64_t> bond_bounds_{0, 0};
+  std::pair<const void*, std::size_t> bond_key_{};
+  // queues_[src * ranges + dst]: written by range src's thread, applied by dst's.
+  std::vector<std::vector<Queued>> queues_;
 };
 
 }  // namespace fibrenet

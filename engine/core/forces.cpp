@@ -8,16 +8,14 @@ namespace fibrenet {
 void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
   Particles& p = w.particles;
   Bonds& bonds = w.bonds;
-  const std::int64_t n_bonds = static_cast<std::int64_t>(bonds.size());
   const double dt = w.settings.dt;
   double inelastic = 0.0, released = 0.0;
   int broke = 0;
 #pragma omp parallel reduction(+ : inelastic, released) reduction(| : broke)
-  {
-    Vec3* force = buffers.Force(ThreadId());
-    Vec3* torque = buffers.Torque(ThreadId());
-#pragma omp for schedule(static)
-    for (std::int64_t b = 0; b < n_bonds; ++b) {
+  for (int range = ThreadId(); range < buffers.Ranges(); range += TeamSize()) {
+    ForceBuffers::Writer out = buffers.WriterFor(range);
+    const auto [first, last] = buffers.BondRange(range);
+    for (std::int64_t b = first; b < last; ++b) {
       if (bonds.broken[b]) continue;
       const std::int32_t i = bonds.i[b], j = bonds.j[b];
       const BondGeometry g{w.cell.Delta(p.x[i], p.x[j]), p.q[i], p.q[j], p.v[j] - p.v[i],
@@ -41,10 +39,8 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
         bonds.events.push_back(e);
         continue;
       }
-      force[i] += r.force_i;
-      force[j] -= r.force_i;
-      torque[i] += r.torque_i;
-      torque[j] += r.torque_j;
+      out.Add(i, r.force_i, r.torque_i);
+      out.AddReaction(j, r.force_i, r.torque_j);
     }
   }
   if (broke) {
@@ -62,16 +58,15 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
 void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
   Particles& p = w.particles;
   NeighbourList& nl = w.neighbours;
-  const std::int64_t n = static_cast<std::int64_t>(p.size());
   const double dt = w.settings.dt;
   const bool friction = w.physics.friction;
   double damping = 0.0, slip = 0.0, min_ratio = 1.0;
 #pragma omp parallel reduction(+ : damping, slip) reduction(min : min_ratio)
-  {
-    Vec3* force = buffers.Force(ThreadId());
-    Vec3* torque = buffers.Torque(ThreadId());
-#pragma omp for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) {
+  for (int range = ThreadId(); range < buffers.Ranges(); range += TeamSize()) {
+    // Rows of this range: the owner i is always in it, the partner j > i mostly.
+    ForceBuffers::Writer out = buffers.WriterFor(range);
+    const auto [first, last] = buffers.ParticleRange(range);
+    for (std::int64_t i = first; i < last; ++i) {
       const Vec3 x_i = p.x[i];
       const double r_i = p.radius[i];
       for (std::size_t k = nl.RowBegin(i); k < nl.RowEnd(i); ++k) {
@@ -92,10 +87,8 @@ void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses
                                 p.mass[i] * p.mass[j] / m_sum,      p.v[j] - p.v[i],
                                 p.omega[i], p.omega[j]};
         const ContactResult r = EvaluateContact(g, w.contact, nl.History(k), dt, friction);
-        force[i] -= r.force_j;
-        force[j] += r.force_j;
-        torque[i] += r.torque_i;
-        torque[j] += r.torque_j;
+        out.AddReaction(static_cast<std::int32_t>(i), r.force_j, r.torque_i);
+        out.Add(j, r.force_j, r.torque_j);
         damping += r.damping_power * dt;
         slip += r.slip_loss;
         min_ratio = std::min(min_ratio, dist / sum_radii);
@@ -150,11 +143,11 @@ void AccumulateWallForces(World& w, StepLosses& losses) {
   }
 }
 
-void AccumulateBodyForces(World& w) {
+void StartForces(World& w) {
   Particles& p = w.particles;
   const Physics& ph = w.physics;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
-  if (!ph.gravity && !ph.drag && !ph.applied_loads) return;
+  // One pass that both clears and loads: the particle arrays are the largest stream here.
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     Vec3 f = Vec3::Zero();
@@ -162,9 +155,11 @@ void AccumulateBodyForces(World& w) {
     if (ph.drag) f -= ph.drag_coefficient * (p.v[i] - ph.air_velocity);
     if (ph.applied_loads) {
       f += w.applied_force[i];
-      p.torque[i] += w.applied_torque[i];
+      p.torque[i] = w.applied_torque[i];
+    } else {
+      p.torque[i].setZero();
     }
-    p.force[i] += f;
+    p.force[i] = f;
   }
 }
 

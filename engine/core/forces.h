@@ -22,7 +22,8 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses);
 void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses);
 // Particle-wall contacts; fills each wall's reaction.
 void AccumulateWallForces(World& w, StepLosses& losses);
-// Gravity, drag and applied loads (only those switched on).
-void AccumulateBodyForces(World& w);
+// Starts a force evaluation: sets every force and torque to the body loads switched on
+// (gravity, drag, applied loads), zero otherwise.
+void StartForces(World& w);
 
 }  // namespace fibrenet

@@ -2,6 +2,8 @@
 // and the `#pragma omp` lines elsewhere are ignored by the compiler.
 #pragma once
 
+#include <cstddef>
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -24,6 +26,15 @@ inline int ThreadId() {
 #endif
 }
 
+// Threads of the enclosing parallel region (1 outside one).
+inline int TeamSize() {
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
 inline void SetThreadCount(int n) {
 #ifdef _OPENMP
   if (n > 0) omp_set_num_threads(n);
@@ -31,5 +42,29 @@ inline void SetThreadCount(int n) {
   (void)n;
 #endif
 }
+
+// Worlds with fewer particles than this step on one thread: below it the fork and join of
+// each parallel region costs more than the work it shares (docs/performance.md), and a core
+// taken by another process stalls every barrier. Serial steps are also bit-identical
+// whatever the thread count.
+constexpr std::size_t kParallelMinParticles = 4096;
+
+// Limits the parallel regions started in its scope to one thread when `particles` is below
+// kParallelMinParticles; restores the thread count when it ends.
+class SerialWhenSmall {
+ public:
+  explicit SerialWhenSmall(std::size_t particles) {
+    if (particles < kParallelMinParticles && ThreadCount() > 1) {
+      saved_ = ThreadCount();
+      SetThreadCount(1);
+    }
+  }
+  ~SerialWhenSmall() { SetThreadCount(saved_); }
+  SerialWhenSmall(const SerialWhenSmall&) = delete;
+  SerialWhenSmall& operator=(const SerialWhenSmall&) = delete;
+
+ private:
+  int saved_ = 0;  // 0: nothing to restore
+};
 
 }  // namespace fibrenet

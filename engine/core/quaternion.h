@@ -14,7 +14,14 @@ inline Vec3 RotationVector(const Quat& q) {
   const Vec3 v = sign * q.vec();
   const double s = v.norm();
   if (s < 1e-12) return 2.0 * v;  // small-angle limit, exact to O(angle^3)
-  const double angle = 2.0 * std::atan2(s, sign * q.w());
+  const double w = sign * q.w();
+  if (s < 1e-3 * w) {
+    // angle = 2 atan(t), t = s / w < 1e-3: the series to t^5 is exact to round-off (the next
+    // term is t^7 / 7 < 1e-21 t) and spares the atan2 call, for bonds run once per step.
+    const double t = s / w, t2 = t * t;
+    return v * ((2.0 / w) * (1.0 - t2 * (1.0 / 3.0 - t2 * 0.2)));
+  }
+  const double angle = 2.0 * std::atan2(s, w);
   return v * (angle / s);
 }
 
@@ -66,6 +73,25 @@ inline Mat3 InverseLeftJacobian(const Vec3& phi) {
   const double c2 = a < 1e-3 ? 1.0 / 12.0 + a2 / 720.0
                              : 1.0 / a2 - std::cos(0.5 * a) / (2.0 * a * std::sin(0.5 * a));
   return Mat3::Identity() - 0.5 * K + c2 * K * K;
+}
+
+// The same Jacobians applied transposed to a vector, without forming a matrix (the bond's
+// hot path): with K v = phi x v, K^T = -K and (K K)^T = K K, so
+//   J_l^T v = v - c1 phi x v + c2 phi x (phi x v),  J_l^-T v = v + phi x v / 2 + c2' phi x (phi x v).
+inline Vec3 LeftJacobianTransposeTimes(const Vec3& phi, const Vec3& v) {
+  const double a = phi.norm(), a2 = a * a;
+  const double c1 = a < 1e-3 ? 0.5 - a2 / 24.0 : (1.0 - std::cos(a)) / a2;
+  const double c2 = a < 1e-3 ? 1.0 / 6.0 - a2 / 120.0 : (a - std::sin(a)) / (a2 * a);
+  const Vec3 pv = phi.cross(v);
+  return v - c1 * pv + c2 * phi.cross(pv);
+}
+
+inline Vec3 InverseLeftJacobianTransposeTimes(const Vec3& phi, const Vec3& v) {
+  const double a = phi.norm(), a2 = a * a;
+  const double c2 = a < 1e-3 ? 1.0 / 12.0 + a2 / 720.0
+                             : 1.0 / a2 - std::cos(0.5 * a) / (2.0 * a * std::sin(0.5 * a));
+  const Vec3 pv = phi.cross(v);
+  return v + 0.5 * pv + c2 * phi.cross(pv);
 }
 
 }  // namespace fibrenet

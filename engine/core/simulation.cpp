@@ -13,6 +13,7 @@ namespace fibrenet {
 
 std::string Simulation::Prepare() {
   Particles& p = w_.particles;
+  const SerialWhenSmall serial(p.size());
   if (w_.settings.skin <= 0.0 && p.size() > 0) {
     double r_min = p.radius[0];
     for (double r : p.radius) r_min = std::min(r_min, r);
@@ -23,7 +24,7 @@ std::string Simulation::Prepare() {
     w_.applied_torque.resize(p.size(), Vec3::Zero());
   }
   const std::string warning = ChooseTimeStep(w_);
-  buffers_.Prepare(p);
+  buffers_.Prepare(p, w_.bonds);
   if (w_.physics.contacts) w_.neighbours.Build(p, w_.cell, w_.bonds, w_.settings.skin);
   return warning;
 }
@@ -32,15 +33,9 @@ void Simulation::ComputeForces() {
   Particles& p = w_.particles;
   if (w_.physics.contacts && w_.neighbours.NeedsRebuild(p, w_.cell))
     w_.neighbours.Build(p, w_.cell, w_.bonds, w_.settings.skin);
-  buffers_.Prepare(p);
-  const std::int64_t n = static_cast<std::int64_t>(p.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    p.force[i].setZero();
-    p.torque[i].setZero();
-  }
+  buffers_.Prepare(p, w_.bonds);
   losses_ = StepLosses{};
-  AccumulateBodyForces(w_);
+  StartForces(w_);
   if (w_.bonds.size() > 0) AccumulateBondForces(w_, buffers_, losses_);
   if (w_.physics.contacts) AccumulateContactForces(w_, buffers_, losses_);
   buffers_.Reduce();
@@ -50,6 +45,7 @@ void Simulation::ComputeForces() {
 void Simulation::Step() {
   Particles& p = w_.particles;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
+  const SerialWhenSmall serial(p.size());
   // A non-finite state (set from outside, e.g. by a prescribed motion) is named before its
   // forces spread it to the neighbours. The smallest bad index is reported.
   std::int64_t bad = n;

@@ -141,22 +141,25 @@ inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, B
   // Bending: elastic-perfectly plastic about the yield moment.
   double m_y = p.k_b * (theta.y() - s.plastic_y);
   double m_z = p.k_b * (theta.z() - s.plastic_z);
-  const double m_b = std::hypot(m_y, m_z);
-  if (m_b > p.yield_moment) {
-    const double excess = (m_b - p.yield_moment) / p.k_b;  // plastic rotation increment [rad]
-    if (dt > 0.0) {
-      s.plastic_y += excess * m_y / m_b;
-      s.plastic_z += excess * m_z / m_b;
-      r.dissipated += p.yield_moment * excess;
+  if (p.yield_moment < std::numeric_limits<double>::infinity()) {  // elastic bonds skip it
+    const double m_b = std::hypot(m_y, m_z);
+    if (m_b > p.yield_moment) {
+      const double excess = (m_b - p.yield_moment) / p.k_b;  // plastic rotation increment [rad]
+      if (dt > 0.0) {
+        s.plastic_y += excess * m_y / m_b;
+        s.plastic_z += excess * m_z / m_b;
+        r.dissipated += p.yield_moment * excess;
+      }
+      m_y *= p.yield_moment / m_b;
+      m_z *= p.yield_moment / m_b;
     }
-    m_y *= p.yield_moment / m_b;
-    m_z *= p.yield_moment / m_b;
   }
   const Vec3 m_local(p.k_t * theta.x(), m_y, m_z);
 
   r.f_r = f_n;
-  r.f_s = p.k_s * std::hypot(u.y(), u.z());
-  r.tau_b = std::hypot(m_y, m_z);
+  // sqrt(a^2 + b^2), not hypot: these magnitudes cannot overflow, and hypot costs a call.
+  r.f_s = p.k_s * std::sqrt(u.y() * u.y() + u.z() * u.z());
+  r.tau_b = std::sqrt(m_y * m_y + m_z * m_z);
   r.tau_t = std::abs(m_local.x());
   r.energy_n = 0.5 * f_n * e_el;
   r.energy_s = 0.5 * p.k_s * (u.y() * u.y() + u.z() * u.z());
@@ -186,11 +189,10 @@ inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, B
   // frame B_i. The moment d x f of the force pair is shared through the mid frame, which
   // turns by P = J_l(theta/2) J_l^-1(theta) / 2 of a relative rotation: (I - A P^T A^T) to i,
   // A P^T A^T to j (half each for small theta). Both keep angular momentum exact.
+  // The products are taken with vectors, right to left, never forming P or A P^T A^T.
   const Mat3 A = B_i.toRotationMatrix();
-  const Mat3 Jinv = InverseLeftJacobian(theta);
-  const Mat3 share_j = A * (0.5 * LeftJacobian(0.5 * theta) * Jinv).transpose() * A.transpose();
   Vec3 f_i = R_m * f_local;
-  const Vec3 m_world = A * (Jinv.transpose() * m_local);
+  const Vec3 m_world = A * InverseLeftJacobianTransposeTimes(theta, m_local);
   Vec3 couple = Vec3::Zero();
 
   if (p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0) {
@@ -209,7 +211,9 @@ inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, B
   // The force pair f_i, -f_i is offset by d: its moment is shared so that angular momentum
   // is conserved exactly (see above; damping forces share it the same way).
   const Vec3 moment = g.d.cross(f_i);
-  const Vec3 moment_j = share_j * moment;
+  const Vec3 moment_j =
+      A * (0.5 * InverseLeftJacobianTransposeTimes(
+                     theta, LeftJacobianTransposeTimes(0.5 * theta, A.transpose() * moment)));
   r.force_i = f_i;
   r.torque_i = m_world + couple + (moment - moment_j);
   r.torque_j = -m_world - couple + moment_j;

@@ -61,8 +61,9 @@ constexpr double kLength = 1e-3;           // fibre contour length [m]
 constexpr double kE = 10e9, kG = 3e9;      // [Pa]
 constexpr double kMassPerLength = 2.5e-7;  // [kg/m]
 
-// A fibre of n particles whose rest state is curved: each segment turns by 6 degrees about
-// a fixed tilted axis (a helix), and the middle segment kinks by 45 degrees. Particles get
+// A fibre of n particles, 1 mm long, whose rest state is curved: each segment turns by
+// 120 / (n - 1) degrees about a fixed tilted axis (a helix), and the middle segment kinks by
+// 45 degrees. Particles get
 // random orientations before they are bonded, so the bond frames are not aligned with them.
 void AddCurvedFibre(World& w, int n, const Vec3& start, std::mt19937& rng) {
   const double spacing = kLength / (n - 1);
@@ -98,7 +99,7 @@ Cell PeriodicCell() {
   return c;
 }
 
-// Positions relative to particle 0, unwrapped along the fibre through the bonds.
+// Positions unwrapped along the fibre, bond by bond, starting from particle 0.
 std::vector<Vec3> Unwrapped(const World& w) {
   const Particles& p = w.particles;
   std::vector<Vec3> r(p.size());
