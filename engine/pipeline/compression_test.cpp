@@ -1,0 +1,333 @@
+#include "engine/pipeline/compression_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "engine/core/error.h"
+#include "engine/core/simulation.h"
+
+namespace fibrenet::pipeline {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// One loading-unloading run of a variant.
+struct Run {
+  Curve curve;
+  double h0 = 0.0, mass_scale = 1.0, dt = 0.0;
+  std::int64_t steps = 0;
+  std::vector<std::string> warnings;
+};
+
+// Figures of one run's curve.
+struct LoopFigures {
+  double peak = 0.0, strain_at_peak = 0.0;
+  double modulus = kNaN, window_lo = 0.0, window_hi = 0.0;
+  double energy_in = 0.0, energy_out = 0.0, hysteresis = kNaN, residual = kNaN;
+  double guard = 0.0, drag_guard = 0.0;
+};
+
+Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& switches,
+            const std::string& name, const Progress& progress) {
+  World& w = net.world;
+  Particles& p = w.particles;
+  if (!w.physics.contacts) {
+    w.physics.contacts = true;
+    w.physics.friction = w.contact.mu > 0.0;
+  }
+  ApplyTestPhysics(net, switches);
+  if (p.size() == 0) throw RunError("compression test: the network has no particles");
+  double z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.v[i].setZero();
+    p.omega[i].setZero();
+    z_lo = std::min(z_lo, p.x[i].z() - p.radius[i]);
+    z_hi = std::max(z_hi, p.x[i].z() + p.radius[i]);
+  }
+  Run run;
+  run.h0 = z_hi - z_lo;
+  const double area = w.cell.Lx() * w.cell.Ly();
+  Wall floor;
+  floor.z = z_lo;
+  floor.side = +1;
+  Wall top;
+  top.z = z_hi;
+  top.side = -1;
+  w.walls = {floor, top};
+
+  const double loading_time = s.max_strain / s.strain_rate;
+  run.mass_scale = ChooseMassScale(w, s.quasi_static, loading_time);
+  AddBondDamping(w, s.quasi_static.bond_damping_ratio);
+  const double speed = s.strain_rate * run.h0;
+  const std::vector<std::uint8_t> held(p.size(), 0);
+  int sign = -1;  // -1 platen down (loading), +1 up
+  auto field = [&] {
+    return AffineField{2, z_lo, w.walls[1].z - z_lo, w.walls[1].vz};
+  };
+  w.walls[1].vz = -speed;
+  for (std::size_t i = 0; i < p.size(); ++i) p.v[i] = field().At(p.x[i]);
+  Simulation sim(w);
+  if (std::string warn = sim.Prepare(); !warn.empty()) run.warnings.push_back(warn);
+  run.dt = w.settings.dt;
+  const double tau = s.quasi_static.drag_time_fraction * loading_time;
+  const auto every = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(loading_time / run.dt / s.samples));
+
+  run.curve.name = name;
+  run.curve.columns = {"strain",        "pressure_Pa", "gap_m",        "kinetic_J",
+                       "platen_work_J", "drag_load_ratio", "bonds_broken", "branch"};
+  // Share of the platen load carried by the drag: |drag virial| / (platen force x gap).
+  auto drag_share = [&] {
+    const double gap = w.walls[1].z - z_lo, lever = w.walls[1].reaction.z() * gap;
+    return lever > 0.0 ? std::abs(DragVirial(w, held, 2, z_lo)) / lever : 0.0;
+  };
+  double strain = 0.0, pressure = 0.0, peak = 0.0, strain_at_peak = 0.0;
+  auto sample = [&] {
+    run.curve.Add({strain, pressure, w.walls[1].z - z_lo, FluctuatingKineticEnergy(w, held, field()),
+                   w.walls[0].work + w.walls[1].work, drag_share(),
+                   static_cast<double>(w.bonds.events.size()),
+                   sign < 0 ? 0.0 : 1.0});
+  };
+  sample();
+  Stopwatch clock;
+  double next_report = progress.interval_s;
+  std::int64_t step = 0;
+  for (;;) {
+    if (step >= s.max_steps) {
+      run.warnings.push_back(fmt::format("{}: stopped at max_steps = {} (strain {:.4g})", name,
+                                         s.max_steps, strain));
+      break;
+    }
+    if (tau > 0.0) ApplyAffineDrag(w, held, field(), tau);
+    sim.Step();
+    ++step;
+    strain = (run.h0 - (w.walls[1].z - z_lo)) / run.h0;
+    pressure = 0.5 * (w.walls[1].reaction.z() - w.walls[0].reaction.z()) / area;
+    if (sign < 0 && pressure > peak) {
+      peak = pressure;
+      strain_at_peak = strain;
+    }
+    bool turn = false, stop = false;
+    if (sign < 0) {
+      turn = strain >= s.max_strain || (s.max_pressure > 0.0 && pressure >= s.max_pressure);
+    } else {
+      stop = strain <= 0.0 ||
+             (pressure <= 0.0 && strain_at_peak - strain > 0.02 * strain_at_peak);
+    }
+    if (step % every == 0 || turn || stop) sample();
+    if (stop) break;
+    if (turn) {
+      // Reverse the platen and the affine part of the particles' motion.
+      const AffineField before = field();
+      w.walls[1].vz = speed;
+      sign = +1;
+      const AffineField after = field();
+      for (std::size_t i = 0; i < p.size(); ++i) p.v[i] += after.At(p.x[i]) - before.At(p.x[i]);
+    }
+    if (progress.report && clock.Seconds() >= next_report) {
+      progress.Say(fmt::format("{}: step {} strain {:.4g} pressure {:.4g} Pa ({})", name, step,
+                               strain, pressure, sign < 0 ? "loading" : "unloading"));
+      next_report = clock.Seconds() + progress.interval_s;
+    }
+  }
+  run.steps = step;
+  return run;
+}
+
+LoopFigures Analyse(const Curve& c, const CompressionSettings& s, double h0) {
+  LoopFigures f;
+  const std::vector<double> e = c.Values("strain"), p = c.Values("pressure_Pa"),
+                            br = c.Values("branch"), ke = c.Values("kinetic_J"),
+                            wk = c.Values("platen_work_J"), dw = c.Values("drag_load_ratio");
+  std::size_t turn = 0;
+  while (turn < br.size() && br[turn] == 0.0) ++turn;
+  std::size_t peak_row = 0;
+  for (std::size_t k = 0; k < turn; ++k)
+    if (p[k] > f.peak) {
+      f.peak = p[k];
+      f.strain_at_peak = e[k];
+      peak_row = k;
+    }
+  f.window_lo = s.modulus_pressure_lo;
+  f.window_hi = s.modulus_pressure_hi;
+  if (f.peak < f.window_hi) {
+    f.window_lo = 0.25 * f.peak;
+    f.window_hi = f.peak;
+  }
+  f.modulus = FitSlope(e, p, p, f.window_lo, f.window_hi, 0, peak_row + 1);
+  f.energy_in = h0 * Trapezoid(e, p, 0, turn);
+  // Unloading runs from the last loading sample on, with decreasing strain.
+  const std::size_t unload_begin = turn > 0 ? turn - 1 : 0;
+  f.energy_out = -h0 * Trapezoid(e, p, unload_begin, e.size());
+  if (f.energy_in > 0.0) f.hysteresis = (f.energy_in - f.energy_out) / f.energy_in;
+  const double level = s.residual_pressure_fraction * f.peak;
+  for (std::size_t k = std::max<std::size_t>(unload_begin, 1); k < e.size(); ++k) {
+    if (p[k] > level) continue;
+    const double span = p[k - 1] - p[k];
+    const double a = span > 0.0 ? std::clamp((p[k - 1] - level) / span, 0.0, 1.0) : 1.0;
+    f.residual = e[k - 1] + a * (e[k] - e[k - 1]);
+    break;
+  }
+  if (std::isnan(f.residual) && !e.empty()) f.residual = e.back();
+  for (std::size_t k = 0; k <= peak_row && k < e.size(); ++k)
+    if (p[k] >= f.window_lo && wk[k] > 0.0) {
+      f.guard = std::max(f.guard, ke[k] / wk[k]);
+      f.drag_guard = std::max(f.drag_guard, dw[k]);
+    }
+  return f;
+}
+
+}  // namespace
+
+std::string CompressionSettings::Validate() const {
+  if (!(max_strain > 0.0 && max_strain <= 0.95))
+    return fmt::format("max_strain = {}: must lie in (0, 0.95]", max_strain);
+  if (!(max_pressure >= 0.0 && max_pressure <= 1e9))
+    return fmt::format("max_pressure = {} Pa: must lie in [0, 1e9] (0 = strain target only)",
+                       max_pressure);
+  if (!(strain_rate > 0.0 && strain_rate <= 1e5))
+    return fmt::format("strain_rate = {} 1/s: must lie in (0, 1e5]", strain_rate);
+  if (!(modulus_pressure_lo >= 0.0 && modulus_pressure_lo < modulus_pressure_hi &&
+        modulus_pressure_hi <= 1e8))
+    return fmt::format("modulus window [{}, {}] Pa: need 0 <= lo < hi <= 1e8",
+                       modulus_pressure_lo, modulus_pressure_hi);
+  if (!(residual_pressure_fraction > 0.0 && residual_pressure_fraction < 1.0))
+    return fmt::format("residual_pressure_fraction = {}: must lie in (0, 1)",
+                       residual_pressure_fraction);
+  if (samples < 10 || samples > 100000)
+    return fmt::format("samples = {}: must lie in [10, 100000]", samples);
+  if (max_steps < 1) return fmt::format("max_steps = {}: must be >= 1", max_steps);
+  if (std::string why = switches.Validate(); !why.empty()) return why;
+  return quasi_static.Validate();
+}
+
+double CompressionResult::Value(const std::string& name) const {
+  if (const Metric* m = FindMetric(metrics, name)) return m->value;
+  throw Error("compression test: no metric " + name);
+}
+
+CompressionResult RunCompressionTest(const Network& net, const CompressionSettings& s,
+                                     const Progress& progress) {
+  if (std::string why = s.Validate(); !why.empty()) throw InputError("compression." + why);
+  CompressionResult res;
+  Run base = RunOnce(net, s, s.switches, "compression", progress);
+  const LoopFigures f = Analyse(base.curve, s, base.h0);
+  res.h0 = base.h0;
+  res.mass_scale = base.mass_scale;
+  res.dt = base.dt;
+  res.steps = base.steps;
+  res.warnings = base.warnings;
+  res.quasi_static = f.guard <= s.quasi_static.kinetic_work_tolerance &&
+                     f.drag_guard <= s.quasi_static.kinetic_work_tolerance;
+  if (!res.quasi_static)
+    res.warnings.push_back(fmt::format(
+        "compression: not quasi-static: kinetic / platen work reached {:.3g}, drag share of the "
+        "load {:.3g} (tolerance {:.3g}); lower the strain rate or raise loading_steps", f.guard,
+        f.drag_guard, s.quasi_static.kinetic_work_tolerance));
+  if (f.peak < s.modulus_pressure_hi)
+    res.warnings.push_back(fmt::format(
+        "compression: peak pressure {:.4g} Pa below the modulus window top {:.4g} Pa; the "
+        "modulus is fitted over 25-100% of the peak", f.peak, s.modulus_pressure_hi));
+  res.metrics = {
+      {"zd_modulus_kPa", f.modulus * 1e-3, "kPa"},
+      {"zd_hysteresis_fraction", f.hysteresis, "-"},
+      {"zd_residual_strain", f.residual, "-"},
+      {"zd_thickness_um", base.h0 * 1e6, "um"},
+      {"zd_compression_energy_J_per_m2", f.energy_in, "J/m^2"},
+      {"zd_peak_pressure_kPa", f.peak * 1e-3, "kPa"},
+      {"zd_max_strain", f.strain_at_peak, "-"},
+      {"zd_kinetic_work_ratio", f.guard, "-"},
+      {"zd_drag_load_ratio", f.drag_guard, "-"},
+      {"zd_mass_scale", base.mass_scale, "-"},
+  };
+  res.curves.push_back(std::move(base.curve));
+  if (!s.attribution) return res;
+
+  struct Variant {
+    const char* mechanism;
+    MaterialSwitches switches;
+  };
+  std::vector<Variant> variants(3, Variant{"", s.switches});
+  variants[0].mechanism = "bond_breakage";
+  variants[0].switches.bond_failure = false;
+  variants[1].mechanism = "slippage";
+  variants[1].switches.friction = false;
+  variants[2].mechanism = "viscous";
+  variants[2].switches.viscoelastic = false;
+  for (const Variant& v : variants) {
+    Run run = RunOnce(net, s, v.switches, std::string("compression_without_") + v.mechanism,
+                      progress);
+    const LoopFigures g = Analyse(run.curve, s, run.h0);
+    res.steps += run.steps;
+    for (auto& warn : run.warnings) res.warnings.push_back(std::move(warn));
+    auto share = [](double base_value, double without) {
+      return base_value > 0.0 ? (base_value - without) / base_value : kNaN;
+    };
+    res.metrics.push_back({fmt::format("zd_hysteresis_share_{}", v.mechanism),
+                           share(f.hysteresis, g.hysteresis), "-"});
+    res.metrics.push_back({fmt::format("zd_residual_share_{}", v.mechanism),
+                           share(f.residual, g.residual), "-"});
+    res.curves.push_back(std::move(run.curve));
+  }
+  return res;
+}
+
+VanWykFit FitVanWyk(const Curve& c, double phi_h0, double p_min_fraction) {
+  const std::vector<double> e = c.Values("strain"), p = c.Values("pressure_Pa"),
+                            br = c.Values("branch");
+  double peak = 0.0;
+  for (std::size_t k = 0; k < p.size() && br[k] == 0.0; ++k) peak = std::max(peak, p[k]);
+  std::vector<double> phi, pr;
+  for (std::size_t k = 0; k < p.size() && br[k] == 0.0; ++k) {
+    if (p[k] < p_min_fraction * peak || e[k] >= 1.0) continue;
+    phi.push_back(phi_h0 / (1.0 - e[k]));
+    pr.push_back(p[k]);
+  }
+  VanWykFit best;
+  if (phi.size() < 3) return best;
+  double mean_p = 0.0;
+  for (double v : pr) mean_p += v;
+  mean_p /= static_cast<double>(pr.size());
+  double ss_tot = 0.0;
+  for (double v : pr) ss_tot += (v - mean_p) * (v - mean_p);
+  // phi is scaled by its largest value so that phi^n stays of order one for any n.
+  const double phi_max = *std::max_element(phi.begin(), phi.end());
+  double best_ss = std::numeric_limits<double>::infinity();
+  for (double n = 1.0; n <= 12.0 + 1e-9; n += 0.01) {
+    double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+    const auto m = static_cast<double>(phi.size());
+    std::vector<double> x(phi.size());
+    for (std::size_t k = 0; k < phi.size(); ++k) {
+      x[k] = std::pow(phi[k] / phi_max, n);
+      sx += x[k];
+      sy += pr[k];
+      sxx += x[k] * x[k];
+      sxy += x[k] * pr[k];
+    }
+    const double det = m * sxx - sx * sx;
+    if (!(det > 0.0)) continue;
+    const double a = (m * sxy - sx * sy) / det, b = (sy - a * sx) / m;
+    double ss = 0.0;
+    for (std::size_t k = 0; k < phi.size(); ++k) ss += std::pow(pr[k] - (a * x[k] + b), 2);
+    if (ss < best_ss) {
+      best_ss = ss;
+      best.n = n;
+      best.k = a / std::pow(phi_max, n);
+      best.phi0 = (a > 0.0 && -b / a > 0.0) ? phi_max * std::pow(-b / a, 1.0 / n) : 0.0;
+    }
+  }
+  best.r2 = ss_tot > 0.0 ? 1.0 - best_ss / ss_tot : 0.0;
+  return best;
+}
+
+double FibreVolume(const Network& net) {
+  double v = 0.0;
+  for (const FibreRecord& f : net.fibres) v += kPi * 0.25 * f.diameter * f.diameter * f.length;
+  return v;
+}
+
+}  // namespace fibrenet::pipeline

@@ -1,0 +1,90 @@
+// Thickness-direction (ZD) compression with unloading (paper 3.6; SPEC 2.5).
+//
+// Procedure. The network is copied and put between two platens: a floor (Wall, side +1) at
+// the lowest particle's bottom and a top platen (Wall, side -1) at the highest particle's
+// top, both periodic in x and y. The top platen comes down at a constant speed, strain_rate
+// times the initial gap, until the strain reaches max_strain or the pressure max_pressure,
+// then goes back up at the same speed until the pressure is gone (or the gap is the initial
+// one). Contacts (van Wyk, with friction as the switches say) are on. Quasi-static control as
+// for the tensile test (test_rig.h), with the affine field u_z = v_platen (z - z_floor) / gap.
+//
+// Definitions:
+//  strain                   (h0 - gap) / h0, h0 the gap at first contact [-]
+//  pressure [Pa]            top platen force / cell area
+//  zd_modulus_kPa           least-squares slope d pressure / d strain of the loading branch
+//                           over modulus_pressure_lo <= p <= modulus_pressure_hi (default
+//                           0.5..2 kPa, the range of caliper and handfeel tests; when the test
+//                           peaks below the top of the window, 25%..100% of the peak)
+//  zd_thickness_um          h0
+//  zd_compression_energy_J_per_m2  loading work per area, h0 * integral p d(strain) (KES WC)
+//  zd_hysteresis_fraction   (loading work - unloading work) / loading work (1 - KES RC)
+//  zd_residual_strain       strain at which the unloading pressure has fallen to
+//                           residual_pressure_fraction (1%) of the peak
+//  zd_peak_pressure_kPa, zd_max_strain, zd_kinetic_work_ratio and zd_drag_load_ratio (the
+//  guards, as for the tensile test, over the loading from the window start to the peak),
+//  zd_mass_scale
+// Attribution (optional, attribution = true; three extra runs): the base run keeps every
+// mechanism; each variant switches one off (bond failure; friction, i.e. dissipative fibre
+// slippage; Maxwell viscoelasticity). zd_hysteresis_share_<m> = (H_base - H_without_m) /
+// H_base and zd_residual_share_<m> likewise for the residual strain, m in {bond_breakage,
+// slippage, viscous}; they need not sum to one (mechanisms interact; the rest is
+// rearrangement and contact damping).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/pipeline/curves.h"
+#include "engine/pipeline/network.h"
+#include "engine/pipeline/progress.h"
+#include "engine/pipeline/test_rig.h"
+
+namespace fibrenet::pipeline {
+
+struct CompressionSettings {
+  double max_strain = 0.6;        // (0, 0.95]
+  double max_pressure = 0.0;      // [Pa]; > 0: stop loading at this pressure (or max_strain)
+  double strain_rate = 1.0;       // platen speed / h0 [1/s]
+  double modulus_pressure_lo = 500.0, modulus_pressure_hi = 2000.0;  // [Pa]
+  double residual_pressure_fraction = 0.01;
+  int samples = 400;              // curve points over the loading
+  bool attribution = false;       // run the three variants for the sources of hysteresis
+  MaterialSwitches switches;
+  QuasiStaticSettings quasi_static;
+  std::int64_t max_steps = 20'000'000;
+
+  std::string Validate() const;
+};
+
+struct CompressionResult {
+  std::vector<Metric> metrics;
+  // "compression": strain, pressure_Pa, gap_m, kinetic_J, platen_work_J, drag_load_ratio, bonds_broken,
+  // branch (0 loading, 1 unloading); with attribution also compression_<variant>.
+  std::vector<Curve> curves;
+  std::vector<std::string> warnings;
+  double h0 = 0.0;  // [m]
+  double mass_scale = 1.0, dt = 0.0;
+  std::int64_t steps = 0;
+  bool quasi_static = true;
+
+  double Value(const std::string& name) const;
+};
+
+CompressionResult RunCompressionTest(const Network& net, const CompressionSettings& s,
+                                     const Progress& progress = {});
+
+// Fit of the loading branch to the van Wyk form p = k (phi^n - phi0^n), phi the fibre volume
+// fraction (fibre volume / (cell area x gap)). For each n on a fine grid, k and k phi0^n follow
+// by linear least squares; the n with the smallest residual wins.
+struct VanWykFit {
+  double n = 0.0, k = 0.0, phi0 = 0.0;  // exponent, [Pa], [-]
+  double r2 = 0.0;                      // coefficient of determination
+};
+// phi_per_strain: phi = phi_h0 / (1 - strain), phi_h0 the volume fraction at h0. Fits the
+// loading samples with p >= p_min_fraction * peak.
+VanWykFit FitVanWyk(const Curve& compression, double phi_h0, double p_min_fraction = 0.01);
+// Fibre volume of the network, sum over fibres of pi (d/2)^2 * length [m^3], for phi.
+double FibreVolume(const Network& net);
+
+}  // namespace fibrenet::pipeline

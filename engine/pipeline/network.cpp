@@ -1,0 +1,112 @@
+#include "engine/pipeline/network.h"
+
+#include <fmt/format.h>
+
+namespace fibrenet::pipeline {
+
+std::int32_t Network::AddFibre(const FibreProperties& f, const std::vector<Vec3>& centres,
+                               const FibreBondOptions& options) {
+  Particles& p = world.particles;
+  Bonds& b = world.bonds;
+  const auto id = static_cast<std::int32_t>(fibres.size());
+  const int n = static_cast<int>(centres.size());
+  const double radius = 0.5 * f.diameter;
+  const double spacing = f.length / n;
+  FibreRecord r;
+  r.first_particle = static_cast<std::int32_t>(p.size());
+  r.particle_count = n;
+  r.first_bond = static_cast<std::int32_t>(b.size());
+  r.bond_count = n - 1;
+  r.length = f.length;
+  r.diameter = f.diameter;
+  r.coarseness = f.coarseness;
+  r.youngs_modulus = f.youngs_modulus;
+  r.shear_modulus = f.shear_modulus;
+  r.strength = f.strength;
+
+  BeamBondParams params = BeamBondParams::FromBeam(f.youngs_modulus, f.shear_modulus, radius, spacing);
+  params.failure = BondFailure::kModeThresholds;
+  params.max_tension = f.strength;
+  params.maxwell_tau = options.maxwell_tau;
+  params.yield_moment = options.yield_moment;
+  r.bond_type = b.AddType(params);
+
+  const double mass = f.coarseness * spacing;  // this particle's share of the fibre length
+  for (const Vec3& c : centres) {
+    Vec3 x = c;
+    world.cell.Wrap(x);
+    p.Add(x, radius, mass, id, options.inertia_scale);
+  }
+  for (int k = 0; k + 1 < n; ++k) {
+    const std::int32_t a = r.first_particle + k, c = a + 1;
+    b.Add(a, c, r.bond_type, BondKind::kFibre,
+          MakeBondState(world.cell.Delta(p.x[a], p.x[c]), p.q[a], p.q[c]));
+  }
+  fibres.push_back(r);
+  return id;
+}
+
+double Network::TotalMass() const {
+  double m = 0.0;
+  for (double mi : world.particles.mass) m += mi;
+  return m;
+}
+
+std::size_t Network::IntactFibreFibreBonds() const {
+  const Bonds& b = world.bonds;
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < b.size(); ++k)
+    n += (b.kind[k] == BondKind::kFibreFibre && !b.broken[k]);
+  return n;
+}
+
+std::string Network::CheckInvariants() const {
+  const Particles& p = world.particles;
+  const Bonds& b = world.bonds;
+  std::size_t next_particle = 0;
+  for (std::size_t f = 0; f < fibres.size(); ++f) {
+    const FibreRecord& r = fibres[f];
+    if (static_cast<std::size_t>(r.first_particle) != next_particle)
+      return fmt::format("fibre {}: particles do not follow the previous fibre's", f);
+    for (int k = 0; k < r.particle_count; ++k)
+      if (p.fibre[r.first_particle + k] != static_cast<std::int32_t>(f))
+        return fmt::format("fibre {}: particle {} belongs to fibre {}", f, r.first_particle + k,
+                           p.fibre[r.first_particle + k]);
+    for (int k = 0; k < r.bond_count; ++k) {
+      const std::size_t bond = r.first_bond + k;
+      if (bond >= b.size() || b.i[bond] != r.first_particle + k ||
+          b.j[bond] != r.first_particle + k + 1)
+        return fmt::format("fibre {}: bond {} does not join particles {} and {}", f, bond,
+                           r.first_particle + k, r.first_particle + k + 1);
+    }
+    next_particle += r.particle_count;
+  }
+  if (next_particle != p.size())
+    return fmt::format("{} particles but the fibres own {}", p.size(), next_particle);
+  return {};
+}
+
+SavedMasses ScaleMasses(World& w, double factor) {
+  Particles& p = w.particles;
+  SavedMasses saved{p.mass, p.inertia};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.mass[i] *= factor;
+    p.inertia[i] *= factor;
+    // A fixed particle (inverse 0) stays fixed.
+    if (p.inv_mass[i] > 0.0) p.inv_mass[i] = 1.0 / p.mass[i];
+    if (p.inv_inertia[i] > 0.0) p.inv_inertia[i] = 1.0 / p.inertia[i];
+  }
+  return saved;
+}
+
+void RestoreMasses(World& w, const SavedMasses& saved) {
+  Particles& p = w.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.mass[i] = saved.mass[i];
+    p.inertia[i] = saved.inertia[i];
+    if (p.inv_mass[i] > 0.0) p.inv_mass[i] = 1.0 / p.mass[i];
+    if (p.inv_inertia[i] > 0.0) p.inv_inertia[i] = 1.0 / p.inertia[i];
+  }
+}
+
+}  // namespace fibrenet::pipeline

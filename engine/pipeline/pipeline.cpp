@@ -1,0 +1,116 @@
+#include "engine/pipeline/pipeline.h"
+
+#include <random>
+
+#include <fmt/format.h>
+
+#include "engine/core/error.h"
+
+namespace fibrenet::pipeline {
+
+std::string PipelineSpec::Validate() const {
+  if (std::string why = sheet.Validate(); !why.empty()) return why;
+  if (std::string why = forming.Validate(); !why.empty()) return "forming." + why;
+  if (pressing)
+    if (std::string why = pressing->Validate(); !why.empty()) return "pressing." + why;
+  if (std::string why = metrics.Validate(); !why.empty()) return "metrics." + why;
+  return tests.Validate();
+}
+
+std::vector<Metric> PipelineReport::AllMetrics() const {
+  std::vector<Metric> all;
+  if (!stages.empty())
+    for (const auto& [name, value] : Final().List()) all.push_back({name, value, NetworkMetricUnit(name)});
+  if (tests) all.insert(all.end(), tests->metrics.begin(), tests->metrics.end());
+  return all;
+}
+
+PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
+                           const StageState* start, std::vector<StageState>* kept) {
+  if (std::string why = spec.Validate(); !why.empty()) throw InputError(why);
+  PipelineReport report;
+  Stopwatch total;
+  std::mt19937_64 rng(spec.seed);
+  const std::size_t done = start ? start->stages.size() : 0;
+  if (start) {
+    const bool valid = (done == 1 && start->stages[0].name == "forming") ||
+                       (done == 2 && start->stages[1].name == "pressing" && spec.pressing);
+    if (!valid) throw Error("RunPipeline: the start state does not match the scene's stages");
+    report.stages = start->stages;
+    report.network = start->network;
+    progress.Say(fmt::format("starting after {} from an earlier run", report.stages.back().name));
+  }
+  auto keep = [&] {
+    if (kept) kept->push_back({report.stages, report.network});
+  };
+
+  if (done < 1) {
+    Stopwatch clock;
+    StageReport stage;
+    stage.name = "forming";
+    PlacementStats placed;
+    report.network = PlaceFibres(spec.sheet, spec.forming, rng, &placed);
+    progress.Say(fmt::format("forming: {} fibres, {} particles in a {:.0f} um high box",
+                             report.network.fibres.size(), report.network.world.particles.size(),
+                             placed.box_height * 1e6));
+    const FormingResult r = Settle(report.network, spec.sheet, spec.forming, progress);
+    stage.steps = r.steps;
+    stage.details = {{"box_height_um", placed.box_height * 1e6},
+                     {"overlapping_fibres_placed", placed.overlapping_fibres},
+                     {"dt_s", r.dt},
+                     {"simulated_time_s", r.simulated_time},
+                     {"settled", r.settled ? 1.0 : 0.0},
+                     {"kinetic_ratio", r.kinetic_ratio}};
+    if (!r.dt_warning.empty()) stage.warnings.push_back(r.dt_warning);
+    if (!r.settled)
+      stage.warnings.push_back(fmt::format(
+          "forming did not settle within max_steps = {} (kinetic ratio {:.3g})",
+          spec.forming.max_steps, r.kinetic_ratio));
+    if (placed.overlapping_fibres > 0)
+      stage.warnings.push_back(fmt::format("{} fibres were placed overlapping others",
+                                           placed.overlapping_fibres));
+    stage.metrics = Measure(report.network, spec.metrics);
+    stage.wall_s = clock.Seconds();
+    report.stages.push_back(std::move(stage));
+    keep();
+  }
+
+  if (spec.pressing && done < 2) {
+    Stopwatch clock;
+    StageReport stage;
+    stage.name = "pressing";
+    PressingResult r = Press(report.network, spec.sheet, *spec.pressing, spec.metrics, progress);
+    stage.steps = r.steps;
+    stage.details = {{"dt_s", r.dt},
+                     {"plate_first_touch_um", r.first_touch * 1e6},
+                     {"plate_gap_at_hold_um", r.plate_gap_at_hold * 1e6},
+                     {"thickness_at_hold_um", r.thickness_at_hold * 1e6},
+                     {"max_pressure_Pa", r.max_pressure},
+                     {"plate_work_J", r.plate_work},
+                     {"kinetic_to_work_ratio", r.kinetic_to_work_ratio},
+                     {"bonds_formed", static_cast<double>(r.bonds_formed)},
+                     {"settled", r.settled ? 1.0 : 0.0}};
+    stage.warnings = std::move(r.warnings);
+    stage.press_curve = std::move(r.curve);
+    stage.metrics = Measure(report.network, spec.metrics);
+    stage.wall_s = clock.Seconds();
+    report.stages.push_back(std::move(stage));
+    keep();
+  }
+
+  if (spec.tests.Any()) {
+    report.tests = RunVirtualTests(report.network, spec.tests, progress);
+    StageReport stage;
+    stage.name = "tests";
+    stage.steps = report.tests->steps;
+    stage.wall_s = report.tests->wall_s;
+    stage.metrics = report.stages.back().metrics;
+    stage.warnings = report.tests->warnings;
+    for (const Metric& m : report.tests->metrics) stage.details.emplace_back(m.name, m.value);
+    report.stages.push_back(std::move(stage));
+  }
+  report.wall_s = total.Seconds();
+  return report;
+}
+
+}  // namespace fibrenet::pipeline

@@ -1,0 +1,79 @@
+// The pipeline on the tiny scene: basis weight, settling, determinism, pressing to a target
+// thickness with springback, bonds formed.
+#include "engine/pipeline/pipeline.h"
+
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include <gtest/gtest.h>
+
+#include "tests/engine/pipeline/tiny_spec.h"
+
+namespace fibrenet::pipeline {
+namespace {
+
+using testing::TinySpec;
+
+// One run of the tiny scene per seed, shared by the tests below (each run takes seconds).
+const PipelineReport& RunTiny(std::uint64_t seed, bool press) {
+  static std::map<std::pair<std::uint64_t, bool>, PipelineReport> cache;
+  auto key = std::make_pair(seed, press);
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    PipelineSpec spec = TinySpec(seed);
+    if (!press) spec.pressing.reset();
+    it = cache.emplace(key, RunPipeline(spec, Progress{})).first;
+  }
+  return it->second;
+}
+
+TEST(Pipeline, BasisWeightWithinOnePercentOfTarget) {
+  const PipelineReport& r = RunTiny(7, false);
+  EXPECT_NEAR(r.Final().basis_weight_gsm, 20.0, 0.2);
+  EXPECT_GT(r.Final().fibre_count, 50.0);
+}
+
+TEST(Pipeline, FormingSettlesOnTheWire) {
+  const PipelineReport& r = RunTiny(7, false);
+  const StageReport& forming = r.stages.at(0);
+  EXPECT_EQ(forming.name, "forming");
+  bool settled = false;
+  for (const auto& [name, value] : forming.details)
+    if (name == "settled") settled = value == 1.0;
+  EXPECT_TRUE(settled);
+  // Every particle has come down from the 2 mm box onto a web far thinner than the box.
+  double top = 0.0;
+  for (const Vec3& x : r.network.world.particles.x) top = std::max(top, x.z());
+  EXPECT_LT(top, 1.0e-3);
+  EXPECT_GT(forming.metrics.contacts_per_fibre, 1.0);
+  EXPECT_EQ(r.network.CheckInvariants(), "");
+}
+
+TEST(Pipeline, SameSeedGivesTheSameNetworkAndOtherSeedsDiffer) {
+  const PipelineReport& a = RunTiny(7, false);
+  PipelineSpec spec = TinySpec(7);
+  spec.pressing.reset();
+  const PipelineReport b = RunPipeline(spec, Progress{});
+  ASSERT_EQ(a.network.world.particles.size(), b.network.world.particles.size());
+  for (std::size_t i = 0; i < a.network.world.particles.size(); ++i)
+    ASSERT_EQ(a.network.world.particles.x[i], b.network.world.particles.x[i]) << "particle " << i;
+  const PipelineReport& c = RunTiny(8, false);
+  EXPECT_NE(a.Final().thickness_um, c.Final().thickness_um);
+  EXPECT_NE(a.network.world.particles.x[0], c.network.world.particles.x[0]);
+}
+
+TEST(Pipeline, PressingReachesTheTargetThicknessAfterSpringback) {
+  const PipelineReport& r = RunTiny(7, true);
+  ASSERT_EQ(r.stages.size(), 2u);
+  const StageReport& pressing = r.stages[1];
+  EXPECT_EQ(pressing.name, "pressing");
+  for (const std::string& w : pressing.warnings) ADD_FAILURE() << "warning: " << w;
+  EXPECT_NEAR(pressing.metrics.thickness_um, 150.0, 0.05 * 150.0);
+  EXPECT_GT(pressing.metrics.bonds_per_fibre, 0.5);
+  EXPECT_NEAR(pressing.metrics.basis_weight_gsm, r.stages[0].metrics.basis_weight_gsm, 1e-9);
+  EXPECT_LT(pressing.metrics.thickness_um, r.stages[0].metrics.thickness_um);
+}
+
+}  // namespace
+}  // namespace fibrenet::pipeline

@@ -1,0 +1,103 @@
+// Softness: the top-surface height map and its spectrum on surfaces of known shape, the
+// composite index, and the whole virtual-test stage (tensile MD and CD, compression,
+// softness) on the tiny pressed sheet of tiny_spec.h, which must report every metric.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/pipeline/pipeline.h"
+#include "engine/pipeline/softness.h"
+#include "engine/pipeline/virtual_tests.h"
+#include "tests/engine/pipeline/tiny_spec.h"
+
+namespace fibrenet::pipeline {
+namespace {
+
+// A carpet of touching spheres (radius R, pitch 2R) on a periodic cell whose heights follow
+// z = A sin(2 pi x / lambda).
+World WavyCarpet(double A, double lambda) {
+  World w;
+  const double R = 10e-6, L = 0.8e-3;
+  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+  w.cell.hi = Vec3(L, L, 1e-3);
+  const int n = static_cast<int>(L / (2 * R));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = (i + 0.5) * 2 * R, y = (j + 0.5) * 2 * R;
+      w.particles.Add(Vec3(x, y, A * std::sin(2 * kPi * x / lambda)), R, 1e-12, -1);
+    }
+  return w;
+}
+
+TEST(Softness, FlatCarpetIsSmoothAndAWavyOneShowsItsWavelength) {
+  const Roughness flat = MeasureRoughness(TopSurface(WavyCarpet(0.0, 0.2e-3), 5e-6, 0.0));
+  EXPECT_LT(flat.sq, 3e-6);  // only the bumps of the spheres themselves
+  const double A = 20e-6, lambda = 0.2e-3;
+  const Roughness wavy = MeasureRoughness(TopSurface(WavyCarpet(A, lambda), 5e-6, 0.0));
+  EXPECT_NEAR(wavy.sq, A / std::sqrt(2.0), 0.15 * A);
+  EXPECT_NEAR(wavy.dominant_wavelength, lambda, 0.01 * lambda);
+  // Along x the harmonic at lambda holds the wave's amplitude A / sqrt(2) (RMS).
+  double best = 0.0;
+  for (double a : wavy.md.amplitude) best = std::max(best, a);
+  EXPECT_NEAR(best, A / std::sqrt(2.0), 0.1 * A);
+  // A larger probe bridges the valleys between spheres: smoother, never rougher.
+  const Roughness probed = MeasureRoughness(TopSurface(WavyCarpet(A, lambda), 5e-6, 50e-6));
+  EXPECT_LE(probed.sq, wavy.sq * 1.01);
+  std::printf("Sq flat %.3f um, wavy %.3f um (A/sqrt2 %.3f um), dominant %.1f um, md peak %.3f "
+              "um, probe 50 um %.3f um\n", flat.sq * 1e6, wavy.sq * 1e6, A / std::sqrt(2.0) * 1e6,
+              wavy.dominant_wavelength * 1e6, best * 1e6, probed.sq * 1e6);
+}
+
+TEST(Softness, IndexIsOneHundredAtTheReferenceAndRisesAsTheSheetSoftens) {
+  const SoftnessIndexSettings s;
+  const double ref = SoftnessIndex(s.bulk_ref_um_per_kPa, s.roughness_ref_um, s.bending_ref_mN_mm, s);
+  EXPECT_NEAR(ref, 100.0, 1e-9);
+  EXPECT_GT(SoftnessIndex(2 * s.bulk_ref_um_per_kPa, s.roughness_ref_um, s.bending_ref_mN_mm, s), ref);
+  EXPECT_LT(SoftnessIndex(s.bulk_ref_um_per_kPa, 2 * s.roughness_ref_um, s.bending_ref_mN_mm, s), ref);
+  EXPECT_LT(SoftnessIndex(s.bulk_ref_um_per_kPa, s.roughness_ref_um, 2 * s.bending_ref_mN_mm, s), ref);
+  EXPECT_NEAR(SoftnessIndex(2 * s.bulk_ref_um_per_kPa, s.roughness_ref_um, s.bending_ref_mN_mm, s),
+              100.0 * std::pow(2.0, s.w_bulk), 1e-9);
+  EXPECT_TRUE(std::isnan(SoftnessIndex(0.0, 1.0, 1.0, s)));
+}
+
+TEST(VirtualTests, TinySheetReportsEveryMetric) {
+  PipelineSpec spec = testing::TinySpec(7);
+  const PipelineReport sheet = RunPipeline(spec, Progress{});
+  VirtualTestsSpec tests;
+  tests.tensile = TensileStage{};
+  tests.tensile->settings.quasi_static.loading_steps = 3000;
+  tests.tensile->settings.samples = 100;
+  tests.compression = CompressionSettings{};
+  tests.compression->quasi_static.loading_steps = 3000;
+  tests.compression->samples = 100;
+  tests.softness = SoftnessSettings{};
+  tests.softness->bending_test.relax_steps = 1000;
+  const VirtualTestsReport r = RunVirtualTests(sheet.network, tests);
+  for (const std::string name :
+       {"tensile_strength_N_per_m", "tensile_modulus_N_per_m", "strain_at_break", "tea_J_per_m2",
+        "strain_energy_per_fibre_nJ", "energy_share_normal", "energy_share_shear",
+        "energy_share_bending", "energy_share_twist", "strain_energy_top10_share",
+        "strain_energy_gini", "cd_tensile_strength_N_per_m", "gmt_tensile_strength_N_per_m",
+        "zd_modulus_kPa", "zd_hysteresis_fraction", "zd_residual_strain", "bulk_softness_um_per_kPa",
+        "surface_roughness_um", "bending_stiffness", "softness_index"}) {
+    const Metric* m = FindMetric(r.metrics, name);
+    ASSERT_NE(m, nullptr) << name;
+    EXPECT_TRUE(std::isfinite(m->value)) << name;
+  }
+  const double shares = FindMetric(r.metrics, "energy_share_normal")->value +
+                        FindMetric(r.metrics, "energy_share_shear")->value +
+                        FindMetric(r.metrics, "energy_share_bending")->value +
+                        FindMetric(r.metrics, "energy_share_twist")->value;
+  EXPECT_NEAR(shares, 1.0, 1e-9);
+  EXPECT_GT(FindMetric(r.metrics, "tensile_strength_N_per_m")->value, 0.0);
+  EXPECT_GT(FindMetric(r.metrics, "bending_stiffness")->value, 0.0);
+  EXPECT_EQ(r.fibre_energy_at_peak.size(), sheet.network.fibres.size());
+  EXPECT_GE(r.curves.size(), 6u);  // tensile md, cd, compression, spectra, profile, bending
+}
+
+}  // namespace
+}  // namespace fibrenet::pipeline

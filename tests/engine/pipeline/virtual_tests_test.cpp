@@ -1,0 +1,195 @@
+// The virtual-test rig on strips whose answer is known in closed form: parallel straight
+// fibres along the load (tensile stiffness n E A / W, pure-bending stiffness n E I / W), plus
+// the bookkeeping (Gini, top share, CSV curves) and the settings' messages.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/core/error.h"
+#include "engine/pipeline/compression_test.h"
+#include "engine/pipeline/curves.h"
+#include "engine/pipeline/sheet_bending.h"
+#include "engine/pipeline/softness.h"
+#include "engine/pipeline/strain_energy.h"
+#include "engine/pipeline/tensile_test.h"
+
+namespace fibrenet::pipeline {
+namespace {
+
+constexpr double kD = 20e-6, kE = 10e9, kG = 3e9;
+
+// `count` straight fibres of 0.9 Lx along x (or along y when along_y) at z = 0, evenly spaced
+// across; no bonds between them. Particles one diameter apart.
+Network ParallelFibres(int count, bool along_y = false) {
+  Network net;
+  World& w = net.world;
+  const double L = 1.0e-3, W = 0.2e-3;
+  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+  w.cell.hi = along_y ? Vec3(W, L, 1e-3) : Vec3(L, W, 1e-3);
+  FibreProperties f;
+  f.length = 0.9 * L;
+  f.diameter = kD;
+  f.coarseness = 1e-7;
+  f.youngs_modulus = kE;
+  f.shear_modulus = kG;
+  f.strength = 1e9;
+  const int n = 45;
+  for (int k = 0; k < count; ++k) {
+    std::vector<Vec3> x;
+    for (int m = 0; m < n; ++m) {
+      const double along = 0.05 * L + (m + 0.5) * f.length / n, across = (k + 0.5) * W / count;
+      x.push_back(along_y ? Vec3(across, along, 0.0) : Vec3(along, across, 0.0));
+    }
+    net.AddFibre(f, x, FibreBondOptions{});
+  }
+  return net;
+}
+
+TensileSettings SmallStrainTensile() {
+  TensileSettings s;
+  s.max_strain = 0.001;
+  s.switches.bond_failure = false;
+  s.quasi_static.loading_steps = 2000;
+  s.samples = 50;
+  return s;
+}
+
+TEST(Bookkeeping, GiniAndTopShare) {
+  EXPECT_NEAR(Gini({1.0, 1.0, 1.0, 1.0}), 0.0, 1e-12);
+  EXPECT_NEAR(Gini({0.0, 0.0, 0.0, 1.0}), 0.75, 1e-12);  // (n - 1) / n
+  EXPECT_NEAR(Gini({1.0, 2.0, 3.0}), 2.0 / 9.0, 1e-12);
+  EXPECT_NEAR(Gini({}), 0.0, 0.0);
+  std::vector<double> v;
+  for (int k = 1; k <= 10; ++k) v.push_back(k);
+  EXPECT_NEAR(TopShare(v, 0.1), 10.0 / 55.0, 1e-12);
+  EXPECT_NEAR(TopShare(v, 0.25), (10.0 + 9.0 + 8.0) / 55.0, 1e-12);  // ceil(2.5) = 3
+}
+
+TEST(Bookkeeping, CurvesWriteCsvOnlyWhenGivenADirectory) {
+  Curve c{"demo", {"strain", "stress_N_per_m"}, {}};
+  c.Add({0.0, 0.0});
+  c.Add({0.5, 1.25});
+  EXPECT_TRUE(WriteCurves({c}, "").empty());
+  const auto dir = std::filesystem::temp_directory_path() / "fibrenet_curves_test";
+  std::filesystem::remove_all(dir);
+  const auto paths = WriteCurves({c}, dir.string(), "md_");
+  ASSERT_EQ(paths.size(), 1u);
+  std::ifstream in(paths[0]);
+  std::string header, first, second;
+  std::getline(in, header);
+  std::getline(in, first);
+  std::getline(in, second);
+  EXPECT_EQ(header, "strain,stress_N_per_m");
+  EXPECT_EQ(first, "0,0");
+  EXPECT_EQ(second, "0.5,1.25");
+  EXPECT_EQ(c.Values("stress_N_per_m")[1], 1.25);
+  EXPECT_THROW(c.Column("nope"), Error);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Settings, MessagesNameTheKeyAndTheRange) {
+  TensileSettings t;
+  t.max_strain = 5.0;
+  EXPECT_NE(t.Validate().find("max_strain"), std::string::npos);
+  EXPECT_NE(t.Validate().find("(0, 2]"), std::string::npos);
+  t = TensileSettings{};
+  t.cycle_strains = {0.05, 0.02};
+  EXPECT_NE(t.Validate().find("cycle_strains"), std::string::npos);
+  t = TensileSettings{};
+  t.quasi_static.kinetic_work_tolerance = 0.0;
+  EXPECT_NE(t.Validate().find("kinetic_work_tolerance"), std::string::npos);
+  CompressionSettings c;
+  c.max_strain = 0.99;
+  EXPECT_NE(c.Validate().find("max_strain"), std::string::npos);
+  BendingSettings b;
+  b.levels = 1;
+  EXPECT_NE(b.Validate().find("levels"), std::string::npos);
+  SoftnessSettings s;
+  s.grid_pitch = 0.0;
+  EXPECT_NE(s.Validate().find("grid_pitch"), std::string::npos);
+  t = TensileSettings{};
+  t.strain_rate = -1.0;
+  EXPECT_THROW(RunTensileTest(ParallelFibres(2), t), InputError);
+}
+
+// n E A / W: the grips hold each fibre at both ends and the free span is the chain between
+// them, so the strip is exactly n springs of stiffness E A / span in parallel.
+TEST(TensileTest, ParallelFibresGiveTheExactStripStiffness) {
+  const int n = 5;
+  const Network net = ParallelFibres(n);
+  const TensileResult r = RunTensileTest(net, SmallStrainTensile());
+  const double A = kPi * kD * kD / 4.0, W = net.world.cell.Ly();
+  EXPECT_NEAR(r.Value("tensile_modulus_N_per_m") / (n * kE * A / W), 1.0, 0.01);
+  EXPECT_NEAR(r.Value("energy_share_normal"), 1.0, 1e-3);
+  EXPECT_NEAR(r.Value("strain_energy_gini"), 0.0, 0.02);
+  EXPECT_NEAR(r.Value("strain_energy_top10_share"), 1.0 / n, 0.01);
+  EXPECT_NEAR(r.Value("tensile_lateral_stress_ratio"), 0.0, 0.01);
+  EXPECT_TRUE(r.quasi_static) << (r.warnings.empty() ? "" : r.warnings[0]);
+  EXPECT_LT(r.Value("tensile_kinetic_work_ratio"), 0.01);
+  // TEA of a linear curve: strength * strain / 2.
+  EXPECT_NEAR(r.Value("tea_J_per_m2"),
+              0.5 * r.Value("tensile_strength_N_per_m") * r.Value("strain_at_break"),
+              0.02 * r.Value("tea_J_per_m2"));
+  EXPECT_EQ(r.curve.name, "tensile_md");
+}
+
+TEST(TensileTest, CrossDirectionTurnsTheSheet) {
+  const int n = 5;
+  const Network net = ParallelFibres(n, /*along_y=*/true);
+  TensileSettings s = SmallStrainTensile();
+  s.axis = LoadAxis::kCD;
+  const TensileResult cd = RunTensileTest(net, s);
+  const double A = kPi * kD * kD / 4.0, W = net.world.cell.Lx();
+  EXPECT_NEAR(cd.Value("tensile_modulus_N_per_m") / (n * kE * A / W), 1.0, 0.01);
+  EXPECT_EQ(cd.curve.name, "tensile_cd");
+  s.axis = LoadAxis::kMD;  // across unbonded fibres nothing carries load
+  const TensileResult md = RunTensileTest(net, s);
+  EXPECT_LT(md.Value("tensile_strength_N_per_m"), 1e-6 * cd.Value("tensile_strength_N_per_m"));
+}
+
+TEST(TensileTest, ElasticStripUnloadsAndReloadsOnTheSameLine) {
+  TensileSettings s = SmallStrainTensile();
+  s.cycle_strains = {0.0005};
+  const TensileResult r = RunTensileTest(ParallelFibres(3), s);
+  EXPECT_NEAR(r.Value("reload_modulus_N_per_m") / r.Value("tensile_modulus_N_per_m"), 1.0, 0.02);
+  EXPECT_LT(r.Value("cycle_residual_strain"), 2e-5);
+  const std::vector<double> branch = r.curve.Values("branch");
+  EXPECT_EQ(branch.back(), 2.0);  // load, unload, reload
+}
+
+TEST(TensileTest, BreaksAtTheFibreStrengthAndReportsIt) {
+  Network net = ParallelFibres(2);
+  const double strength = 0.05;  // [N]: a fibre breaks at strain 0.05 / (E A) ~ 1.6%
+  for (BeamBondParams& t : net.world.bonds.types) t.max_tension = strength;
+  TensileSettings s;
+  s.max_strain = 0.04;
+  s.quasi_static.loading_steps = 2000;
+  const TensileResult r = RunTensileTest(net, s);
+  EXPECT_TRUE(r.failed);
+  const double W = net.world.cell.Ly();
+  EXPECT_NEAR(r.Value("tensile_strength_N_per_m"), 2 * strength / W, 0.03 * 2 * strength / W);
+  s.switches.bond_failure = false;  // the variant without failure does not break
+  EXPECT_FALSE(RunTensileTest(net, s).failed);
+}
+
+// D = n E I / W for n fibres bent about their own axes.
+TEST(BendingTest, ParallelFibresGiveTheBeamStiffness) {
+  const int n = 5;
+  const Network net = ParallelFibres(n);
+  const BendingResult r = RunBendingTest(net, BendingSettings{});
+  const double I = kPi * std::pow(kD, 4) / 64.0, W = net.world.cell.Ly();
+  const double expected_mN_mm = n * kE * I / W * 1e6;
+  EXPECT_NEAR(FindMetric(r.metrics, "bending_stiffness")->value / expected_mN_mm, 1.0, 0.03);
+  EXPECT_TRUE(r.settled) << (r.warnings.empty() ? "" : r.warnings[0]);
+  // The kinematics leave no net axial force on a homogeneous strip.
+  const std::vector<double> axial = r.curve.Values("axial_force_N_per_m");
+  const double scale = n * kE * kPi * kD * kD / 4.0 / W;  // tensile stiffness [N/m]
+  EXPECT_LT(std::abs(axial.back()), 1e-5 * scale);
+}
+
+}  // namespace
+}  // namespace fibrenet::pipeline
