@@ -12,5 +12,9 @@ struct Context {
 
 void AddValidateCommand(CLI::App& app, Context& context);
 void AddBenchCommand(CLI::App& app, Context& context);
+void AddRunCommand(CLI::App& app, Context& context);
+void AddCampaignCommand(CLI::App& app, Context& context);
+void AddDbCommand(CLI::App& app, Context& context);
+void AddReportCommand(CLI::App& app, Context& context);
 
 }  // namespace fibrenet::cli

@@ -14,6 +14,10 @@ int main(int argc, char** argv) {
   fibrenet::cli::Context context;
   fibrenet::cli::AddValidateCommand(app, context);
   fibrenet::cli::AddBenchCommand(app, context);
+  fibrenet::cli::AddRunCommand(app, context);
+  fibrenet::cli::AddCampaignCommand(app, context);
+  fibrenet::cli::AddDbCommand(app, context);
+  fibrenet::cli::AddReportCommand(app, context);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,16 @@
+#include "campaigns/evaluator.h"
+
+#include "campaigns/analytic_evaluator.h"
+#include "campaigns/campaign_file.h"
+#include "campaigns/scene_evaluator.h"
+
+namespace fibrenet::campaigns {
+
+Evaluator MakeEvaluator(const std::string& base_scene, const std::vector<std::string>& goal_metrics) {
+  if (base_scene.rfind(kAnalyticPrefix, 0) == 0) {
+    return MakeAnalyticEvaluator(base_scene.substr(kAnalyticPrefix.size()));
+  }
+  return MakeSceneEvaluator(base_scene, goal_metrics);
+}
+
+}  // namespace fibrenet::campaigns

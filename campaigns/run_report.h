@@ -1,0 +1,22 @@
+// What a pipeline run hands back to its caller, in the forms the CLI and the campaign
+// driver need: one JSON document, and files (metrics, density profiles, the pressing curve,
+// particle positions) written under an output folder.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/pipeline/pipeline.h"
+
+namespace fibrenet::campaigns {
+
+// {"metrics": {...final...}, "stages": [{"name", "wall_s", "steps", "metrics", "details",
+//  "warnings"}], "wall_s": ...}
+nlohmann::json ReportJson(const pipeline::PipelineReport& report);
+
+// Writes under dir (created if needed): metrics.json, <stage>_density_profile.csv,
+// pressing_curve.csv, <stage>... and final particles.csv. Throws RunError on I/O failure.
+void WriteOutputs(const std::string& dir, const pipeline::PipelineReport& report);
+
+}  // namespace fibrenet::campaigns

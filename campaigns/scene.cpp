@@ -1,0 +1,318 @@
+#include "campaigns/scene.h"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "campaigns/scene_tests.h"
+#include "campaigns/table_reader.h"
+#include "engine/core/error.h"
+
+namespace fibrenet::campaigns {
+
+namespace {
+
+using pipeline::PipelineSpec;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+// Tables an override may create when the file leaves them out (they only hold settings
+// with defaults); stage tables are never created by an override.
+const std::vector<std::string> kSettingTables = {"cell", "fidelity", "fibres", "contact",
+                                                 "metrics", "forming"};
+const std::vector<std::string> kRootKeys = {"seed",    "cell",     "fidelity", "fibres",
+                                            "contact", "forming",  "pressing", "metrics",
+                                            "tensile", "compression", "softness"};
+
+std::vector<std::string> Split(const std::string& path) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(path);
+  while (std::getline(in, part, '.')) parts.push_back(part);
+  if (!path.empty() && path.back() == '.') parts.push_back("");
+  return parts;
+}
+
+void ApplyOverride(toml::table& root, const Override& o, const std::string& file) {
+  auto fail = [&](const std::string& what) {
+    throw InputError(fmt::format("{}: override '{}': {}", file, o.path, what));
+  };
+  const std::vector<std::string> parts = Split(o.path);
+  if (parts.empty()) fail("empty key path");
+  for (const auto& p : parts)
+    if (p.empty()) fail("empty component in the dotted key path");
+  if (!std::isfinite(o.value)) fail("value must be finite");
+  toml::table* t = &root;
+  std::string prefix;
+  for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
+    const std::string& c = parts[k];
+    prefix = prefix.empty() ? c : prefix + "." + c;
+    toml::node* n = t->get(c);
+    if (!n) {
+      const bool setting_table =
+          std::find(kSettingTables.begin(), kSettingTables.end(), c) != kSettingTables.end();
+      if (k > 0)
+        fail(fmt::format("the scene has no [{}] table{}", prefix,
+                         prefix == "pressing.bonding" ? ": an override cannot enable bonding" : ""));
+      if (c == "pressing" || std::find(SceneTestTables().begin(), SceneTestTables().end(), c) !=
+                                 SceneTestTables().end())
+        fail(fmt::format("the scene has no [{}] table: an override cannot enable a stage", c));
+      if (!setting_table) {
+        const std::string near = Suggest(c, kRootKeys);
+        fail(fmt::format("unknown scene table '{}'{}", c,
+                         near.empty() ? "" : fmt::format("; did you mean '{}'?", near)));
+      }
+      t->insert(c, toml::table{});
+      n = t->get(c);
+    }
+    if (!n->is_table())
+      fail(fmt::format("'{}' is a single value, not a table (a fixed value has no '{}')", prefix,
+                       parts[k + 1]));
+    t = n->as_table();
+  }
+  const std::string& leaf = parts.back();
+  const toml::node* old = t->get(leaf);
+  if (old && old->is_table())
+    fail(fmt::format("'{}' is a table; override one of its numbers (e.g. '{}.mean')", o.path,
+                     o.path));
+  if (old && !old->is_number())
+    fail("the key holds a non-numeric value; only numeric keys can be overridden");
+  const bool integral = std::nearbyint(o.value) == o.value && std::abs(o.value) < 9e15;
+  if ((!old || old->is_integer()) && integral)
+    t->insert_or_assign(leaf, static_cast<std::int64_t>(o.value));
+  else
+    t->insert_or_assign(leaf, o.value);
+}
+
+pipeline::FibreSpec ReadFibres(TableReader& r) {
+  pipeline::FibreSpec f;
+  f.length = r.Dist("length_mm", 1.92, OpenClosed(0, 100), "mm").Scaled(1e-3);
+  f.diameter = r.Dist("diameter_um", 32, OpenClosed(0, 1000), "um").Scaled(1e-6);
+  f.coarseness = r.Dist("coarseness_mg_per_100m", 25, OpenClosed(0, 1000), "mg/100 m").Scaled(1e-8);
+  f.youngs_modulus = r.Dist("youngs_modulus_GPa", 10, OpenClosed(0, 1000), "GPa").Scaled(1e9);
+  f.shear_modulus = r.Dist("shear_modulus_GPa", 3, OpenClosed(0, 1000), "GPa").Scaled(1e9);
+  f.strength = r.Dist("strength_mN", 100, OpenClosed(0, 1e6), "mN").Scaled(1e-3);
+  f.segments = static_cast<int>(r.Integer("segments", 1, 1, 1000));
+  f.bend_angle = r.Dist("bend_angle_deg", 0, Closed(-180, 180), "deg").Scaled(kDeg);
+  f.twist_angle = r.Dist("twist_angle_deg", 0, Closed(-360, 360), "deg").Scaled(kDeg);
+  f.maxwell_tau = r.Number("maxwell_tau_s", 0, Closed(0, 1e6), "s (0 = elastic)");
+  if (r.Has("yield_moment_uN_m"))
+    f.yield_moment = r.Number("yield_moment_uN_m", kInf, OpenClosed(0, 1e6), "uN m") * 1e-6;
+  else
+    r.Number("yield_moment_uN_m", 0, OpenClosed(0, 1e6), "uN m");  // known, absent: elastic
+  r.Finish();
+  if (f.diameter.Highest() >= f.length.Lowest())
+    r.Fail("length_mm", fmt::format("the shortest fibre ({:g} mm) must be longer than the thickest "
+                                    "fibre diameter ({:g} um); set a larger length (or its min)",
+                                    f.length.Lowest() * 1e3, f.diameter.Highest() * 1e6));
+  return f;
+}
+
+ContactParams ReadContact(TableReader& r) {
+  ContactParams c;
+  c.normal.C = r.Number("C_mN", 0.26, OpenClosed(0, 1e3), "mN") * 1e-3;
+  c.normal.g = r.Number("exponent_g", 3.45, Closed(1, 20), "");
+  c.normal.linear_below = r.Number("linear_below", 0.5, Open(0, 1), "of R_i + R_j");
+  c.mu = r.Number("friction_mu", 0.3, Closed(0, 10), "");
+  c.restitution = r.Number("restitution", 0.5, OpenClosed(0, 1), "");
+  c.tangential_ratio = r.Number("tangential_ratio", 1.0, OpenClosed(0, 10), "");
+  r.Finish();
+  c.Derive();
+  return c;
+}
+
+pipeline::FormingSettings ReadForming(TableReader& r) {
+  pipeline::FormingSettings f;
+  f.consistency = r.Number("consistency_percent", 1.0, Open(0, 100), "%") * 0.01;
+  f.suspension_density = r.Number("suspension_density_kg_per_m3", 1000, OpenClosed(0, 1e5), "kg/m^3");
+  f.drop_gap = r.Number("drop_gap_mm", 0, Closed(0, 1000), "mm") * 1e-3;
+  f.orientation = r.Choice("orientation", "isotropic", {"isotropic", "planar"}) == "planar"
+                      ? pipeline::Orientation::kPlanar
+                      : pipeline::Orientation::kIsotropic;
+  f.terminal_velocity = r.Number("terminal_velocity_m_per_s", 0.05, OpenClosed(0, 100), "m/s");
+  f.air_velocity = r.Number("air_velocity_m_per_s", 0.0, Closed(0, 100), "m/s");
+  f.mass_scale = r.Number("mass_scale", 1, Closed(1, 1e8), "");
+  f.gravity_scale = r.Number("gravity_scale", 1, Closed(1, 1e8), "");
+  f.stiffness_scale = r.Number("stiffness_scale", 1, OpenClosed(0, 1), "");
+  f.settle_kinetic_ratio = r.Number("settle_kinetic_ratio", 1e-3, Open(0, 1), "");
+  f.max_steps = r.Integer("max_steps", 5'000'000, 1, 10'000'000'000LL);
+  f.placement_attempts = static_cast<int>(r.Integer("placement_attempts", 10000, 1, 10'000'000));
+  r.Finish();
+  return f;
+}
+
+pipeline::BondingSettings ReadBonding(TableReader& r) {
+  pipeline::BondingSettings b;
+  b.rest_length = r.Choice("rest_length", "current", {"current", "contact"}) == "contact"
+                      ? pipeline::RestLength::kContact
+                      : pipeline::RestLength::kCurrent;
+  b.transverse_modulus = r.Number("transverse_modulus_GPa", 1.0, OpenClosed(0, 1000), "GPa") * 1e9;
+  b.transverse_shear_modulus =
+      r.Number("transverse_shear_modulus_GPa", 0.3, OpenClosed(0, 1000), "GPa") * 1e9;
+  b.bond_radius_fraction = r.Number("bond_radius_fraction", 0.5, OpenClosed(0, 1), "");
+  b.F_r0 = r.Number("F_r0_mN", 25, OpenClosed(0, 1e6), "mN") * 1e-3;
+  b.F_s0 = r.Number("F_s0_mN", 5, OpenClosed(0, 1e6), "mN") * 1e-3;
+  b.gap_tolerance = r.Number("gap_tolerance", 0, Closed(-0.5, 0.5), "of R_i + R_j");
+  r.Finish();
+  return b;
+}
+
+pipeline::PressingSettings ReadPressing(TableReader& r, ReadContext& ctx) {
+  pipeline::PressingSettings p;
+  const bool by_thickness = r.Has("target_thickness_um");
+  const bool by_pressure = r.Has("target_pressure_kPa");
+  if (by_thickness && by_pressure)
+    r.Fail("target_pressure_kPa", "give target_thickness_um or target_pressure_kPa, not both");
+  if (!by_thickness && !by_pressure)
+    r.Fail("target_thickness_um", "missing; give target_thickness_um or target_pressure_kPa");
+  p.target = by_pressure ? pipeline::PressTarget::kPressure : pipeline::PressTarget::kThickness;
+  p.target_thickness = r.Number("target_thickness_um", 200, OpenClosed(0, 1e5), "um") * 1e-6;
+  p.target_pressure = r.Number("target_pressure_kPa", 0, OpenClosed(0, 1e6), "kPa") * 1e3;
+  p.control = r.Choice("thickness_control", "sheet", {"sheet", "plate"}) == "plate"
+                  ? pipeline::ThicknessControl::kPlate
+                  : pipeline::ThicknessControl::kSheet;
+  p.control_tolerance = r.Number("control_tolerance", 0.01, OpenClosed(0, 0.5), "(relative)");
+  p.max_corrections = static_cast<int>(r.Integer("max_corrections", 5, 0, 100));
+  p.speed = r.Number("speed_m_per_s", 0.1, OpenClosed(0, 100), "m/s");
+  p.approach_speed = r.Number("approach_speed_m_per_s", 1.0, OpenClosed(0, 100), "m/s");
+  p.mass_scale = r.Number("mass_scale", 1, Closed(1, 1e8), "");
+  p.damping_time = r.Number("damping_time_us", 10, OpenClosed(0, 1e6), "us") * 1e-6;
+  p.min_hold_time = r.Number("min_hold_time_us", 0, Closed(0, 1e7), "us") * 1e-6;
+  p.settle_kinetic_ratio = r.Number("settle_kinetic_ratio", 1e-4, Open(0, 1), "");
+  p.kinetic_work_tolerance = r.Number("kinetic_work_tolerance", 0.01, OpenClosed(0, 1), "");
+  p.set_fibre_shape = r.Bool("set_fibre_shape", true);
+  p.max_steps = r.Integer("max_steps", 5'000'000, 1, 10'000'000'000LL);
+  if (const toml::table* b = r.Table("bonding")) {
+    TableReader br(b, r.Path("bonding"), ctx);
+    p.bonding = ReadBonding(br);
+  }
+  r.Finish();
+  return p;
+}
+
+pipeline::MetricsSettings ReadMetrics(TableReader& r) {
+  pipeline::MetricsSettings m;
+  m.fibre_density = r.Number("fibre_density_kg_per_m3", 1500, OpenClosed(0, 1e5), "kg/m^3");
+  m.thickness_grid = r.Number("thickness_grid_um", 50, OpenClosed(0, 1e5), "um") * 1e-6;
+  m.surface_percentile = r.Number("surface_percentile", 1, ClosedOpen(0, 50), "%");
+  m.profile_bin = r.Number("profile_bin_um", 10, OpenClosed(0, 1e4), "um") * 1e-6;
+  r.Finish();
+  return m;
+}
+
+PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
+  PipelineSpec spec;
+  TableReader root(&root_table, "", ctx);
+  spec.seed = static_cast<std::uint64_t>(
+      root.Integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+
+  TableReader cell(root.Table("cell"), "cell", ctx);
+  spec.sheet.Lx = cell.Number("size_x_mm", 2.5, OpenClosed(0, 1000), "mm") * 1e-3;
+  spec.sheet.Ly = cell.Number("size_y_mm", 2.5, OpenClosed(0, 1000), "mm") * 1e-3;
+  spec.sheet.basis_weight = cell.Number("basis_weight_gsm", 20, OpenClosed(0, 1000), "g/m^2") * 1e-3;
+  cell.Finish();
+
+  TableReader fidelity(root.Table("fidelity"), "fidelity", ctx);
+  spec.sheet.particle_spacing = fidelity.Number("particle_spacing_diameters", 1.0, Closed(0.25, 10), "diameters");
+  spec.sheet.inertia_scale = fidelity.Number("inertia_scale", 1.0, Closed(1, 1e6), "");
+  spec.sheet.time_step_safety = fidelity.Number("time_step_safety", 0.5, OpenClosed(0, 1), "of dt_crit");
+  fidelity.Finish();
+
+  TableReader fibres(root.Table("fibres"), "fibres", ctx);
+  spec.sheet.fibres = ReadFibres(fibres);
+  TableReader contact(root.Table("contact"), "contact", ctx);
+  spec.sheet.contact = ReadContact(contact);
+
+  const toml::table* forming = root.Table("forming");
+  if (!forming) root.Fail("forming", "missing table [forming]: the network is made by forming");
+  TableReader fr(forming, "forming", ctx);
+  spec.forming = ReadForming(fr);
+  if (const toml::table* pressing = root.Table("pressing")) {
+    TableReader pr(pressing, "pressing", ctx);
+    spec.pressing = ReadPressing(pr, ctx);
+  }
+  TableReader metrics(root.Table("metrics"), "metrics", ctx);
+  spec.metrics = ReadMetrics(metrics);
+  ReadSceneTests(root, ctx, spec.tests);
+  root.Finish();
+
+  // Non-physical combinations, named by their scene keys.
+  const double length = spec.sheet.fibres.length.Mean();
+  if (length >= std::min(spec.sheet.Lx, spec.sheet.Ly))
+    fibres.Fail("length_mm", fmt::format("the mean fibre length {:g} mm must be shorter than the "
+                                         "cell side {:g} mm (cell.size_x_mm, cell.size_y_mm)",
+                                         length * 1e3, std::min(spec.sheet.Lx, spec.sheet.Ly) * 1e3));
+  if (spec.pressing && spec.pressing->target == pipeline::PressTarget::kThickness &&
+      spec.pressing->target_thickness <= spec.sheet.fibres.diameter.Highest())
+    throw InputError(fmt::format("{}: pressing.target_thickness_um: {:g} um is not above the "
+                                 "thickest fibre ({:g} um); accepted ({:g}, 1e5] um",
+                                 ctx.file, spec.pressing->target_thickness * 1e6,
+                                 spec.sheet.fibres.diameter.Highest() * 1e6,
+                                 spec.sheet.fibres.diameter.Highest() * 1e6));
+  if (std::string why = spec.Validate(); !why.empty())
+    throw InputError(fmt::format("{}: {}", ctx.file, why));
+  return spec;
+}
+
+}  // namespace
+
+Override ParseOverride(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos)
+    throw InputError(fmt::format("override '{}': expected KEY=NUMBER", text));
+  Override o;
+  o.path = text.substr(0, eq);
+  const std::string value = text.substr(eq + 1);
+  try {
+    std::size_t used = 0;
+    o.value = std::stod(value, &used);
+    if (used != value.size()) throw std::invalid_argument(value);
+  } catch (const std::exception&) {
+    throw InputError(fmt::format("override '{}': '{}' is not a number", text, value));
+  }
+  return o;
+}
+
+PipelineSpec ParseScene(std::string_view text, const std::string& name,
+                        const std::vector<Override>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", name, e.source().begin.line,
+                                 e.source().begin.column, e.description()));
+  }
+  ReadContext ctx;
+  ctx.file = name;
+  for (const Override& o : overrides) {
+    ApplyOverride(root, o, name);
+    ctx.overrides.insert(o.path);
+  }
+  PipelineSpec spec = ReadScene(root, ctx);
+  for (const Override& o : overrides)
+    if (!ctx.known.count(o.path)) {
+      const std::vector<std::string> known(ctx.known.begin(), ctx.known.end());
+      const std::string near = Suggest(o.path, known);
+      throw InputError(fmt::format("{}: override '{}': unknown scene key{}", name, o.path,
+                                   near.empty() ? "" : fmt::format("; did you mean '{}'?", near)));
+    }
+  return spec;
+}
+
+std::string ReadSceneText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open the scene file (missing or unreadable)", path));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+PipelineSpec LoadScene(const std::string& path, const std::vector<Override>& overrides) {
+  return ParseScene(ReadSceneText(path), path, overrides);
+}
+
+}  // namespace fibrenet::campaigns

@@ -1,0 +1,40 @@
+// Scene files: a TOML description of one pipeline run (fibres, cell, stages and their
+// settings, fidelity, random seed), read into pipeline::PipelineSpec in SI units. Keys name
+// their unit (length_mm, diameter_um, basis_weight_gsm, ...); a stage table present means
+// the stage runs. docs/scene-files.md lists every key with unit, default and range.
+//
+// Errors (unknown key with a close-match suggestion, wrong type, out-of-range or
+// non-physical value, missing file, TOML syntax) are fibrenet::InputError messages that
+// name the file, the dotted key and the accepted range.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/pipeline/pipeline.h"
+
+namespace fibrenet::campaigns {
+
+// A numeric scene key set by dotted path ("pressing.target_thickness_um" = 150,
+// "fibres.length_mm.mean" = 2.1), applied to the file's contents before validation. The
+// optimiser sets its design variables this way. The path must name a key the scene
+// reader knows (in a stage that is enabled); integer keys take integral values only.
+struct Override {
+  std::string path;
+  double value = 0.0;
+};
+
+// Parses "path=value" (as given on a command line).
+Override ParseOverride(const std::string& text);
+
+pipeline::PipelineSpec LoadScene(const std::string& path, const std::vector<Override>& overrides = {});
+
+// The text of a scene file (InputError naming the file when it cannot be read).
+std::string ReadSceneText(const std::string& path);
+
+// The same from text; `name` stands for the file in messages.
+pipeline::PipelineSpec ParseScene(std::string_view text, const std::string& name,
+                                  const std::vector<Override>& overrides = {});
+
+}  // namespace fibrenet::campaigns

@@ -1,0 +1,241 @@
+// Serial and Open MPI schedulers. This is the only file of fibrenet that includes mpi.h; the
+// MPI half is compiled only when CMake's FIBRENET_ENABLE_MPI defines FIBRENET_WITH_MPI here.
+#include "optimizer/scheduler.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+
+#include "engine/core/error.h"
+#include "optimizer/task_codec.h"
+
+#if FIBRENET_WITH_MPI
+#include <mpi.h>
+#endif
+
+namespace fibrenet::optimizer {
+namespace {
+
+class SerialScheduler : public Scheduler {
+ public:
+  explicit SerialScheduler(EvaluateFn evaluate) : evaluate_(std::move(evaluate)) {}
+  bool is_driver() const override { return true; }
+  int evaluators() const override { return 1; }
+  std::string description() const override { return "serial"; }
+
+  void Run(const std::vector<Task>& tasks, const BatchCallbacks& callbacks) override {
+    for (std::size_t i = 0; i < tasks.size(); ++i) {
+      if (callbacks.stop_requested && callbacks.stop_requested()) return;
+      if (callbacks.on_start) callbacks.on_start(i);
+      TaskResult result = ExecuteTask(evaluate_, tasks[i], i);
+      if (callbacks.on_finish) callbacks.on_finish(std::move(result));
+    }
+  }
+
+  void Serve() override {}
+
+ private:
+  EvaluateFn evaluate_;
+};
+
+// The number of ranks mpirun (Open MPI, or a PMI launcher) started, or 0 outside mpirun.
+int LaunchedRanks() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"}) {
+    if (const char* value = std::getenv(name)) return std::atoi(value);
+  }
+  return 0;
+}
+
+#if FIBRENET_WITH_MPI
+
+constexpr int kTaskTag = 1;
+constexpr int kReplyTag = 2;
+constexpr int kStopTag = 3;
+
+void Send(const std::string& text, int destination, int tag) {
+  MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, destination, tag, MPI_COMM_WORLD);
+}
+
+// Receives the message announced by `status` (after MPI_Probe).
+std::string Receive(const MPI_Status& status) {
+  int count = 0;
+  MPI_Get_count(&status, MPI_CHAR, &count);
+  std::string text(static_cast<std::size_t>(count), '\0');
+  MPI_Status received;
+  MPI_Recv(text.data(), count, MPI_CHAR, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD,
+           &received);
+  return text;
+}
+
+class MpiScheduler : public Scheduler {
+ public:
+  explicit MpiScheduler(EvaluateFn evaluate) : evaluate_(std::move(evaluate)) {
+    int initialised = 0;
+    MPI_Initialized(&initialised);
+    if (!initialised) {
+      int provided = 0;
+      MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+      owns_mpi_ = true;
+    }
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  }
+
+  ~MpiScheduler() override {
+    // Workers wait in Serve() until told to stop. Run() never leaves tasks out, so every
+    // worker is idle here.
+    if (rank_ == 0) {
+      for (int worker = 1; worker < size_; ++worker) Send(std::string(), worker, kStopTag);
+    }
+    if (owns_mpi_) MPI_Finalize();
+  }
+
+  bool is_driver() const override { return rank_ == 0; }
+  int evaluators() const override { return size_ > 1 ? size_ - 1 : 1; }
+  std::string description() const override {
+    return fmt::format("MPI, {} ranks ({} evaluating)", size_, evaluators());
+  }
+
+  void Run(const std::vector<Task>& tasks, const BatchCallbacks& callbacks) override {
+    if (size_ == 1) {
+      SerialScheduler(evaluate_).Run(tasks, callbacks);
+      return;
+    }
+    std::vector<int> idle;
+    for (int worker = size_ - 1; worker >= 1; --worker) idle.push_back(worker);
+    int outstanding = 0;
+    std::size_t next = 0;
+    bool stopping = false;
+    std::exception_ptr error;
+    while (true) {
+      while (!stopping && next < tasks.size() && !idle.empty()) {
+        try {
+          if (callbacks.stop_requested && callbacks.stop_requested()) {
+            stopping = true;
+            break;
+          }
+          if (callbacks.on_start) callbacks.on_start(next);
+        } catch (...) {
+          error = std::current_exception();
+          stopping = true;
+          break;
+        }
+        Send(EncodeTask(tasks[next], next), idle.back(), kTaskTag);
+        idle.pop_back();
+        ++outstanding;
+        ++next;
+      }
+      if (outstanding == 0) break;
+      MPI_Status status;
+      MPI_Probe(MPI_ANY_SOURCE, kReplyTag, MPI_COMM_WORLD, &status);
+      WorkerReply reply = DecodeReply(Receive(status));
+      idle.push_back(status.MPI_SOURCE);
+      --outstanding;
+      if (error) continue;  // draining after an error: the results are dropped
+      if (reply.fatal) {
+        const std::string message = fmt::format("rank {}: {}", status.MPI_SOURCE, reply.message);
+        error = reply.input_error ? std::make_exception_ptr(InputError(message))
+                                  : std::make_exception_ptr(RunError(message));
+        stopping = true;
+        continue;
+      }
+      try {
+        if (callbacks.on_finish) callbacks.on_finish(std::move(reply.result));
+      } catch (...) {
+        error = std::current_exception();
+        stopping = true;
+      }
+    }
+    if (error) std::rethrow_exception(error);
+  }
+
+  void Serve() override {
+    if (rank_ == 0) return;
+    while (true) {
+      MPI_Status status;
+      MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+      const std::string text = Receive(status);
+      if (status.MPI_TAG == kStopTag) return;
+      std::size_t index = 0;
+      const Task task = DecodeTask(text, &index);
+      WorkerReply reply;
+      reply.result.index = index;
+      try {
+        reply.result = ExecuteTask(evaluate_, task, index);
+      } catch (const InputError& e) {
+        reply.fatal = true;
+        reply.input_error = true;
+        reply.message = e.what();
+      } catch (const std::exception& e) {
+        reply.fatal = true;
+        reply.message = e.what();
+      }
+      Send(EncodeReply(reply), 0, kReplyTag);
+    }
+  }
+
+ private:
+  EvaluateFn evaluate_;
+  bool owns_mpi_ = false;
+  int rank_ = 0;
+  int size_ = 1;
+};
+
+#endif  // FIBRENET_WITH_MPI
+
+}  // namespace
+
+TaskResult ExecuteTask(const EvaluateFn& evaluate, const Task& task, std::size_t index) {
+  TaskResult out;
+  out.index = index;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    out.result = evaluate(task.design, task.fidelity, task.seed);
+  } catch (const RunError& e) {
+    out.result = EvaluationResult{};
+    out.result.ok = false;
+    out.result.reason = e.what();
+  }
+  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EvaluationResult& r = out.result;
+  if (!r.ok) {
+    if (r.reason.empty()) r.reason = "evaluation failed (the evaluator gave no reason)";
+    return out;
+  }
+  if (r.metrics.empty()) {
+    r.ok = false;
+    r.reason = "the evaluator returned no metrics";
+  }
+  for (const auto& [name, value] : r.metrics) {
+    if (!std::isfinite(value)) {
+      r.ok = false;
+      r.reason = fmt::format("metric '{}' is not finite ({})", name, value);
+      break;
+    }
+  }
+  return out;
+}
+
+std::unique_ptr<Scheduler> MakeSerialScheduler(EvaluateFn evaluate) {
+  return std::make_unique<SerialScheduler>(std::move(evaluate));
+}
+
+std::unique_ptr<Scheduler> MakeScheduler(EvaluateFn evaluate) {
+  const int ranks = LaunchedRanks();
+#if FIBRENET_WITH_MPI
+  if (ranks > 1) return std::make_unique<MpiScheduler>(std::move(evaluate));
+#else
+  if (ranks > 1) {
+    throw InputError(
+        fmt::format("launched on {} MPI ranks, but this build has no MPI support (configure with "
+                    "-DFIBRENET_ENABLE_MPI=ON); run it without mpirun",
+                    ranks));
+  }
+#endif
+  return MakeSerialScheduler(std::move(evaluate));
+}
+
+}  // namespace fibrenet::optimizer

@@ -1,0 +1,208 @@
+// Scene files: the example scenes load; errors name file, key and accepted range;
+// overrides by dotted path work and reject unknown paths.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "campaigns/scene.h"
+#include "engine/core/error.h"
+
+namespace fibrenet::campaigns {
+namespace {
+
+const std::string kScenes = FIBRENET_SCENES_DIR;
+
+const char* kMinimal = R"(
+seed = 3
+[cell]
+size_x_mm = 1.0
+size_y_mm = 1.0
+basis_weight_gsm = 20
+[fibres]
+length_mm = 0.5
+[forming]
+consistency_percent = 1.0
+[pressing]
+target_thickness_um = 150
+[pressing.bonding]
+)";
+
+// The message of the InputError that `f` throws ("" if none).
+template <class F>
+std::string InputErrorOf(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneFile, ExampleScenesLoad) {
+  for (const char* name : {"generic-tissue.toml", "generic-tissue-10mm.toml", "tiny.toml"}) {
+    const pipeline::PipelineSpec spec = LoadScene(kScenes + "/" + name);
+    EXPECT_EQ(spec.Validate(), "") << name;
+    EXPECT_TRUE(spec.pressing.has_value()) << name;
+  }
+  const pipeline::PipelineSpec tissue = LoadScene(kScenes + "/generic-tissue.toml");
+  EXPECT_GE(tissue.sheet.Lx, 2.5e-3);
+  EXPECT_DOUBLE_EQ(tissue.sheet.basis_weight, 0.020);
+  EXPECT_DOUBLE_EQ(tissue.sheet.fibres.length.Mean(), 1.92e-3);
+  EXPECT_DOUBLE_EQ(tissue.pressing->target_thickness, 200e-6);
+  EXPECT_DOUBLE_EQ(LoadScene(kScenes + "/generic-tissue-10mm.toml").sheet.Lx, 10e-3);
+}
+
+TEST(SceneFile, UnitsAreConvertedToSI) {
+  const pipeline::PipelineSpec s = ParseScene(kMinimal, "min.toml");
+  EXPECT_EQ(s.seed, 3u);
+  EXPECT_DOUBLE_EQ(s.sheet.Lx, 1e-3);
+  EXPECT_DOUBLE_EQ(s.sheet.fibres.length.Mean(), 0.5e-3);
+  EXPECT_DOUBLE_EQ(s.sheet.fibres.diameter.Mean(), 32e-6);
+  EXPECT_DOUBLE_EQ(s.sheet.fibres.coarseness.Mean(), 25e-8);
+  EXPECT_DOUBLE_EQ(s.forming.consistency, 0.01);
+  EXPECT_DOUBLE_EQ(s.pressing->target_thickness, 150e-6);
+  ASSERT_TRUE(s.pressing->bonding.has_value());
+  EXPECT_DOUBLE_EQ(s.pressing->bonding->F_r0, 25e-3);
+  EXPECT_DOUBLE_EQ(s.pressing->bonding->F_s0, 5e-3);
+}
+
+TEST(SceneFile, DistributionsAreRead) {
+  const std::string text = std::string(kMinimal) + R"(
+[fibres.coarseness_mg_per_100m]
+distribution = "uniform"
+min = 16
+max = 35
+)";
+  // A distribution as a sub-table.
+  EXPECT_EQ(ParseScene(text, "sub.toml").sheet.fibres.coarseness.kind,
+            pipeline::DistributionKind::kUniform);
+  // Distributions inline.
+  const std::string inline_text = R"(
+[fibres]
+length_mm = { distribution = "normal", mean = 0.5, sd = 0.05, min = 0.3, max = 0.7 }
+coarseness_mg_per_100m = { distribution = "uniform", min = 16, max = 35 }
+bend_angle_deg = { distribution = "table", values = [0, 5, 10], weights = [1, 1, 2] }
+[forming]
+)";
+  const pipeline::PipelineSpec s = ParseScene(inline_text, "d.toml");
+  EXPECT_EQ(s.sheet.fibres.length.kind, pipeline::DistributionKind::kNormal);
+  EXPECT_DOUBLE_EQ(s.sheet.fibres.length.min, 0.3e-3);
+  EXPECT_DOUBLE_EQ(s.sheet.fibres.coarseness.max, 35e-8);
+  EXPECT_EQ(s.sheet.fibres.bend_angle.values.size(), 3u);
+}
+
+TEST(SceneFile, UnknownKeyNamesFileKeyAndSuggestion) {
+  const std::string msg = InputErrorOf([] {
+    ParseScene("[fibres]\nlenght_mm = 1.0\n[forming]\n", "typo.toml");
+  });
+  EXPECT_NE(msg.find("typo.toml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("fibres.lenght_mm"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("did you mean 'fibres.length_mm'"), std::string::npos) << msg;
+  const std::string unit = InputErrorOf([] { ParseScene("[cell]\nsize_x = 1\n[forming]\n", "u.toml"); });
+  EXPECT_NE(unit.find("did you mean 'cell.size_x_mm'"), std::string::npos) << unit;
+}
+
+TEST(SceneFile, WrongTypeNamesFileAndKey) {
+  const std::string msg = InputErrorOf([] {
+    ParseScene("[cell]\nbasis_weight_gsm = \"twenty\"\n[forming]\n", "type.toml");
+  });
+  EXPECT_NE(msg.find("type.toml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("cell.basis_weight_gsm"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("expected a number"), std::string::npos) << msg;
+  const std::string integer = InputErrorOf([] { ParseScene("seed = 1.5\n[forming]\n", "i.toml"); });
+  EXPECT_NE(integer.find("expected an integer"), std::string::npos) << integer;
+}
+
+TEST(SceneFile, OutOfRangeNamesTheAcceptedRange) {
+  const std::string msg = InputErrorOf([] {
+    ParseScene("[forming]\nconsistency_percent = 150\n", "range.toml");
+  });
+  EXPECT_NE(msg.find("range.toml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("forming.consistency_percent"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("(0, 100)"), std::string::npos) << msg;
+  const std::string neg = InputErrorOf([] {
+    ParseScene("[fibres]\ndiameter_um = -3\n[forming]\n", "neg.toml");
+  });
+  EXPECT_NE(neg.find("fibres.diameter_um"), std::string::npos) << neg;
+  EXPECT_NE(neg.find("(0, 1000] um"), std::string::npos) << neg;
+}
+
+TEST(SceneFile, NonPhysicalCombinationsAreRejected) {
+  // Fibres longer than the cell.
+  const std::string longer = InputErrorOf([] {
+    ParseScene("[cell]\nsize_x_mm = 1\nsize_y_mm = 1\n[fibres]\nlength_mm = 2\n[forming]\n", "l.toml");
+  });
+  EXPECT_NE(longer.find("fibres.length_mm"), std::string::npos) << longer;
+  // Fibres thicker than long.
+  const std::string thick = InputErrorOf([] {
+    ParseScene("[fibres]\nlength_mm = 0.02\ndiameter_um = 32\n[forming]\n", "t.toml");
+  });
+  EXPECT_NE(thick.find("fibres.length_mm"), std::string::npos) << thick;
+  // Both pressing targets.
+  const std::string both = InputErrorOf([] {
+    ParseScene("[forming]\n[pressing]\ntarget_thickness_um = 200\ntarget_pressure_kPa = 5\n", "b.toml");
+  });
+  EXPECT_NE(both.find("pressing.target_pressure_kPa"), std::string::npos) << both;
+  // No forming stage.
+  EXPECT_NE(InputErrorOf([] { ParseScene("seed = 1\n", "nf.toml"); }).find("[forming]"),
+            std::string::npos);
+}
+
+TEST(SceneFile, MissingFileAndSyntaxErrorsNameTheFile) {
+  const std::string missing = InputErrorOf([] { LoadScene("/nonexistent/scene.toml"); });
+  EXPECT_NE(missing.find("/nonexistent/scene.toml"), std::string::npos) << missing;
+  const std::string syntax = InputErrorOf([] { ParseScene("[cell\n", "syntax.toml"); });
+  EXPECT_NE(syntax.find("syntax.toml:1"), std::string::npos) << syntax;
+}
+
+TEST(SceneFile, OverrideByDottedPathSetsTheValue) {
+  const pipeline::PipelineSpec s = ParseScene(
+      kMinimal, "min.toml",
+      {{"pressing.target_thickness_um", 120}, {"fibres.diameter_um", 20}, {"seed", 9},
+       {"contact.friction_mu", 0.5}, {"pressing.bonding.F_r0_mN", 30}});
+  EXPECT_DOUBLE_EQ(s.pressing->target_thickness, 120e-6);
+  EXPECT_DOUBLE_EQ(s.sheet.fibres.diameter.Mean(), 20e-6);
+  EXPECT_EQ(s.seed, 9u);
+  EXPECT_DOUBLE_EQ(s.sheet.contact.mu, 0.5);
+  EXPECT_DOUBLE_EQ(s.pressing->bonding->F_r0, 30e-3);
+  // A distribution parameter.
+  const std::string dist = R"(
+[fibres]
+length_mm = { distribution = "normal", mean = 0.5, sd = 0.05, min = 0.3, max = 0.7 }
+[forming]
+)";
+  EXPECT_DOUBLE_EQ(ParseScene(dist, "d.toml", {{"fibres.length_mm.mean", 0.6}}).sheet.fibres.length.mean,
+                   0.6e-3);
+  // ParseOverride reads KEY=VALUE.
+  const Override o = ParseOverride("pressing.target_thickness_um=150");
+  EXPECT_EQ(o.path, "pressing.target_thickness_um");
+  EXPECT_DOUBLE_EQ(o.value, 150.0);
+}
+
+TEST(SceneFile, OverrideRejectsUnknownPathsAndBadValues) {
+  const std::string unknown = InputErrorOf([] {
+    ParseScene(kMinimal, "min.toml", {{"pressing.target_thicknes_um", 150}});
+  });
+  EXPECT_NE(unknown.find("pressing.target_thicknes_um"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("did you mean 'pressing.target_thickness_um'"), std::string::npos) << unknown;
+  const std::string table = InputErrorOf([] { ParseScene(kMinimal, "min.toml", {{"foo.bar", 1}}); });
+  EXPECT_NE(table.find("unknown scene table 'foo'"), std::string::npos) << table;
+  const std::string range = InputErrorOf([] {
+    ParseScene(kMinimal, "min.toml", {{"pressing.target_thickness_um", -5}});
+  });
+  EXPECT_NE(range.find("(override)"), std::string::npos) << range;
+  EXPECT_NE(range.find("out of range"), std::string::npos) << range;
+  const std::string stage = InputErrorOf([] {
+    ParseScene("[forming]\n", "ns.toml", {{"pressing.target_thickness_um", 150}});
+  });
+  EXPECT_NE(stage.find("cannot enable a stage"), std::string::npos) << stage;
+  const std::string fixed = InputErrorOf([] {
+    ParseScene(kMinimal, "min.toml", {{"fibres.length_mm.mean", 0.6}});
+  });
+  EXPECT_NE(fixed.find("fibres.length_mm"), std::string::npos) << fixed;
+  EXPECT_NE(InputErrorOf([] { ParseOverride("seed"); }), "");
+  EXPECT_NE(InputErrorOf([] { ParseOverride("seed=abc"); }), "");
+}
+
+}  // namespace
+}  // namespace fibrenet::campaigns
