@@ -70,7 +70,7 @@ void WriteOutputs(const std::string& dir, const pipeline::PipelineReport& report
         curve << p.time << "," << p.plate_z * 1e6 << "," << p.pressure << "," << p.kinetic << "\n";
     }
   }
-  if (report.tests) pipeline::WriteCurves(report.tests->curves, dir);
+  if (report.tests) pipeline::WriteCurves(report.tests->curves, (root / "curves").string());
   const World& w = report.network.world;
   auto out = OpenOut(root / "particles.csv");
   out << "x_um,y_um,z_um,radius_um,fibre\n";

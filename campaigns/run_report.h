@@ -16,7 +16,8 @@ namespace fibrenet::campaigns {
 nlohmann::json ReportJson(const pipeline::PipelineReport& report);
 
 // Writes under dir (created if needed): metrics.json, <stage>_density_profile.csv,
-// pressing_curve.csv, <stage>... and final particles.csv. Throws RunError on I/O failure.
+// pressing_curve.csv, the virtual tests' curves under curves/, and the final particles.csv.
+// Throws RunError on I/O failure.
 void WriteOutputs(const std::string& dir, const pipeline::PipelineReport& report);
 
 }  // namespace fibrenet::campaigns
