@@ -23,6 +23,9 @@ struct Case {
   double tolerance;  // on the objective reached (minimum 0)
 };
 
+// Names the case by its algorithm in test output (instead of its bytes).
+void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
+
 class EveryAlgorithm : public ::testing::TestWithParam<Case> {};
 
 TEST_P(EveryAlgorithm, FindsTheBottomOfABowl) {
