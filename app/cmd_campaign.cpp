@@ -13,6 +13,7 @@
 #include "campaigns/campaign_runner.h"
 #include "campaigns/evaluator.h"
 #include "db/error.h"
+#include "db/queries.h"
 #include "db/results_db.h"
 #include "engine/core/error.h"
 #include "optimizer/scheduler.h"
@@ -40,6 +41,22 @@ nlohmann::json SummaryJson(const campaigns::CandidateSummary& s) {
   return {{"candidate_id", s.id},     {"eval_index", s.eval_index}, {"fidelity", s.fidelity},
           {"phase", s.phase},         {"parameters", s.design},     {"metrics", metrics},
           {"objective", s.objective}, {"feasible", s.feasible}};
+}
+
+// Candidates of the campaign whose networks came from the stage cache (metric
+// `reused_stages`: 1 formed network reused, 2 formed and pressed): the evaluations saved.
+struct StageReuse {
+  int forming = 0, pressing = 0;
+};
+
+StageReuse CountStageReuse(const db::ResultsDb& db, const std::string& campaign) {
+  StageReuse reuse;
+  for (const db::CandidateRow& c : db::candidates(db, campaign))
+    if (const db::MetricValue* m = c.metric("reused_stages")) {
+      reuse.forming += m->value >= 1.0 ? 1 : 0;
+      reuse.pressing += m->value >= 2.0 ? 1 : 0;
+    }
+  return reuse;
 }
 
 nlohmann::json ResultJson(const campaigns::CampaignResult& r, const std::string& db_path,
@@ -86,14 +103,20 @@ int RunCampaignCommand(const CampaignRunOptions& o) {
   } catch (const db::DbError& e) {
     throw RunError(std::string("results database: ") + e.what());
   }
+  const StageReuse reuse = CountStageReuse(*db, result.name);
   if (o.json) {
-    std::cout << ResultJson(result, o.db_path, scheduler->description()).dump(2) << "\n";
+    nlohmann::json j = ResultJson(result, o.db_path, scheduler->description());
+    j["stage_cache"] = {{"forming_reused", reuse.forming}, {"pressing_reused", reuse.pressing}};
+    std::cout << j.dump(2) << "\n";
   } else {
     std::cout << fmt::format(
         "campaign '{}' {}; {} candidates ({} evaluated, {} replayed, {} "
         "failed); results in {}\n",
         result.name, result.status, result.candidates, result.evaluated, result.replayed,
         result.failed, o.db_path);
+    if (reuse.forming > 0)
+      std::cout << fmt::format("stage cache: {} candidates reused a formed network ({} of them "
+                               "also the pressed one)\n", reuse.forming, reuse.pressing);
     if (result.best) {
       std::cout << fmt::format("best: candidate {} (#{}, fidelity '{}'), objective {:.6g}, {}\n",
                                result.best->id, result.best->eval_index, result.best->fidelity,
