@@ -67,7 +67,6 @@ double LoadedEndResponse(const ChainSpec& spec, double safety, Load load, double
 }
 
 std::vector<CaseResult> RunCase(const char* name, Load load) {
-  beam::OneThread one_thread;
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
     const beam::Stopwatch clock;

@@ -12,7 +12,6 @@
 #include <functional>
 #include <string>
 
-#include "engine/core/parallel.h"
 #include "engine/core/simulation.h"
 #include "engine/validation/beam_chain.h"
 
@@ -51,20 +50,6 @@ class Stopwatch {
 
  private:
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
-// Runs the scope on one OpenMP thread and restores the previous count: a chain of tens of
-// particles costs less than the fork/join of a parallel region, and on a shared machine
-// a second thread only adds waiting.
-class OneThread {
- public:
-  OneThread() : previous_(ThreadCount()) { SetThreadCount(1); }
-  ~OneThread() { SetThreadCount(previous_); }
-  OneThread(const OneThread&) = delete;
-  OneThread& operator=(const OneThread&) = delete;
-
- private:
-  int previous_;
 };
 
 // A world holding one paper fibre in an isolated cell, with applied loads switched on

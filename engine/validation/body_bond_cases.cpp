@@ -27,7 +27,6 @@
 #include <fmt/format.h>
 
 #include "engine/core/energy.h"
-#include "engine/core/parallel.h"
 #include "engine/core/quaternion.h"
 #include "engine/core/simulation.h"
 #include "engine/validation/cases.h"
@@ -35,18 +34,6 @@
 namespace fibrenet::validation {
 
 namespace {
-
-// The cases hold one or two particles: one thread is faster than OpenMP's fork and join.
-class OneThread {
- public:
-  OneThread() : saved_(ThreadCount()) { SetThreadCount(1); }
-  ~OneThread() { SetThreadCount(saved_); }
-  OneThread(const OneThread&) = delete;
-  OneThread& operator=(const OneThread&) = delete;
-
- private:
-  int saved_;
-};
 
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -301,17 +288,14 @@ CaseResult HillAt(int increments, bool is_default) {
 }  // namespace
 
 std::vector<CaseResult> DragTerminalVelocity() {
-  OneThread one_thread;
   return {DragAt(0.5, false), DragAt(0.1, true), DragAt(0.02, false)};
 }
 
 std::vector<CaseResult> MaxwellRelaxation() {
-  OneThread one_thread;
   return {MaxwellAt(0.9, false), MaxwellAt(0.5, true), MaxwellAt(0.25, false)};
 }
 
 std::vector<CaseResult> HillCriterion() {
-  OneThread one_thread;
   return {HillAt(100, false), HillAt(1000, true), HillAt(10000, false)};
 }
 

@@ -144,7 +144,6 @@ CaseResult Result(const char* name, const Fidelity& f) {
 }  // namespace
 
 std::vector<CaseResult> EulerBuckling() {
-  beam::OneThread one_thread;
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
     const beam::Stopwatch clock;
@@ -174,7 +173,6 @@ std::vector<CaseResult> EulerBuckling() {
 }
 
 std::vector<CaseResult> BendingFrequency() {
-  beam::OneThread one_thread;
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
     const beam::Stopwatch clock;

@@ -84,7 +84,6 @@ std::string RelaxNote(const beam::Relaxation& r) {
 }  // namespace
 
 std::vector<CaseResult> CantileverSmall() {
-  beam::OneThread one_thread;
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
     const beam::Stopwatch clock;
@@ -109,7 +108,6 @@ std::vector<CaseResult> CantileverSmall() {
 }
 
 std::vector<CaseResult> CantileverElastica() {
-  beam::OneThread one_thread;
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
     const beam::Stopwatch clock;

@@ -24,26 +24,12 @@
 #include <fmt/format.h>
 
 #include "engine/core/energy.h"
-#include "engine/core/parallel.h"
 #include "engine/core/simulation.h"
 #include "engine/validation/cases.h"
 
 namespace fibrenet::validation {
 
 namespace {
-
-// The particle cases hold one or two particles: one thread is faster than OpenMP's fork
-// and join per loop.
-class OneThread {
- public:
-  OneThread() : saved_(ThreadCount()) { SetThreadCount(1); }
-  ~OneThread() { SetThreadCount(saved_); }
-  OneThread(const OneThread&) = delete;
-  OneThread& operator=(const OneThread&) = delete;
-
- private:
-  int saved_;
-};
 
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -289,17 +275,14 @@ CaseResult FrictionAt(double safety, bool is_default) {
 }  // namespace
 
 std::vector<CaseResult> VanWykCompression() {
-  OneThread one_thread;
   return {Compression(50, false), Compression(200, true), Compression(1000, false)};
 }
 
 std::vector<CaseResult> Restitution() {
-  OneThread one_thread;
   return {RestitutionAt(0.5, true), RestitutionAt(0.25, false), RestitutionAt(0.1, false)};
 }
 
 std::vector<CaseResult> FrictionIncline() {
-  OneThread one_thread;
   return {FrictionAt(0.9, false), FrictionAt(0.5, true), FrictionAt(0.25, false)};
 }
 

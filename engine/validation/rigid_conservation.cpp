@@ -30,7 +30,6 @@
 #include <fmt/format.h>
 
 #include "engine/core/energy.h"
-#include "engine/core/parallel.h"
 #include "engine/core/quaternion.h"
 #include "engine/core/simulation.h"
 #include "engine/validation/cases.h"
@@ -38,19 +37,6 @@
 namespace fibrenet::validation {
 
 namespace {
-
-// The particle cases hold at most a few dozen particles: one thread is faster than OpenMP's
-// fork and join per loop, and keeps the results independent of the machine.
-class OneThread {
- public:
-  OneThread() : saved_(ThreadCount()) { SetThreadCount(1); }
-  ~OneThread() { SetThreadCount(saved_); }
-  OneThread(const OneThread&) = delete;
-  OneThread& operator=(const OneThread&) = delete;
-
- private:
-  int saved_;
-};
 
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -260,7 +246,6 @@ DynamicResult DynamicRigidMotion(const Fidelity& f) {
 }  // namespace
 
 std::vector<CaseResult> RigidMotion() {
-  OneThread one_thread;
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
     const auto start = std::chrono::steady_clock::now();
@@ -285,7 +270,6 @@ std::vector<CaseResult> RigidMotion() {
 }
 
 std::vector<CaseResult> Conservation() {
-  OneThread one_thread;
   constexpr std::int64_t kSteps = 100000;
   constexpr std::int64_t kWindow = kSteps / 10;
   std::vector<CaseResult> results;
