@@ -10,6 +10,7 @@
 #include "campaigns/scene_tests.h"
 #include "campaigns/table_reader.h"
 #include "engine/core/error.h"
+#include "optimizer/closest_match.h"
 
 namespace fibrenet::campaigns {
 
@@ -62,7 +63,7 @@ void ApplyOverride(toml::table& root, const Override& o, const std::string& file
                                  SceneTestTables().end())
         fail(fmt::format("the scene has no [{}] table: an override cannot enable a stage", c));
       if (!setting_table) {
-        const std::string near = Suggest(c, kRootKeys);
+        const std::string near = optimizer::ClosestMatch(c, kRootKeys);
         fail(fmt::format("unknown scene table '{}'{}", c,
                          near.empty() ? "" : fmt::format("; did you mean '{}'?", near)));
       }
@@ -296,7 +297,7 @@ PipelineSpec ParseScene(std::string_view text, const std::string& name,
   for (const Override& o : overrides)
     if (!ctx.known.count(o.path)) {
       const std::vector<std::string> known(ctx.known.begin(), ctx.known.end());
-      const std::string near = Suggest(o.path, known);
+      const std::string near = optimizer::ClosestMatch(o.path, known);
       throw InputError(fmt::format("{}: override '{}': unknown scene key{}", name, o.path,
                                    near.empty() ? "" : fmt::format("; did you mean '{}'?", near)));
     }

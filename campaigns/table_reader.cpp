@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.h"
+#include "optimizer/closest_match.h"
 
 namespace fibrenet::campaigns {
 
@@ -47,38 +48,6 @@ bool Range::Contains(double v) const {
 std::string Range::Text() const {
   return fmt::format("{}{}, {}{}", lo_open ? "(" : "[", FormatBound(lo), FormatBound(hi),
                      hi_open ? ")" : "]");
-}
-
-std::size_t EditDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1] ? 1 : 0)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
-std::string Suggest(const std::string& key, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t best_d = std::numeric_limits<std::size_t>::max();
-  for (const std::string& c : candidates) {
-    std::size_t d = EditDistance(key, c);
-    // A key that starts the same way (a unit left off or wrong) is a good guess too.
-    const std::size_t stem = std::min(key.size(), c.size());
-    if (stem >= 4 && key.compare(0, stem, c, 0, stem) == 0) d = std::min<std::size_t>(d, 2);
-    if (d < best_d) {
-      best_d = d;
-      best = c;
-    }
-  }
-  const std::size_t limit = std::max<std::size_t>(2, key.size() / 3);
-  return best_d <= limit ? best : std::string();
 }
 
 TableReader::TableReader(const toml::table* table, std::string prefix, ReadContext& ctx)
@@ -165,7 +134,7 @@ std::string TableReader::Choice(const std::string& key, const std::string& fallb
   const auto s = n->value_exact<std::string>();
   if (!s) Fail(key, fmt::format("expected one of {}, got {}", list, TypeName(*n)));
   if (std::find(choices.begin(), choices.end(), *s) == choices.end()) {
-    const std::string near = Suggest(*s, choices);
+    const std::string near = optimizer::ClosestMatch(*s, choices);
     Fail(key, fmt::format("\"{}\" is not accepted; accepted: {}{}", *s, list,
                           near.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", near)));
   }
@@ -242,7 +211,7 @@ void TableReader::Finish() {
   for (const auto& [k, v] : *table_) {
     const std::string key(k.str());
     if (std::find(asked_.begin(), asked_.end(), key) != asked_.end()) continue;
-    const std::string near = Suggest(key, asked_);
+    const std::string near = optimizer::ClosestMatch(key, asked_);
     const std::string path = Path(key);
     throw InputError(fmt::format("{}: unknown key '{}'{}{}", ctx_.file, path,
                                  ctx_.overrides.count(path) ? " (override)" : "",

@@ -34,11 +34,6 @@ inline Range OpenClosed(double lo, double hi) { return {lo, hi, true, false}; }
 inline Range Open(double lo, double hi) { return {lo, hi, true, true}; }
 inline Range ClosedOpen(double lo, double hi) { return {lo, hi, false, true}; }
 
-// Edit distance, for "did you mean" suggestions.
-std::size_t EditDistance(const std::string& a, const std::string& b);
-// The candidate nearest to `key`, or empty when none is close.
-std::string Suggest(const std::string& key, const std::vector<std::string>& candidates);
-
 class TableReader {
  public:
   // table may be null (an absent table: every key takes its default). prefix: dotted path
