@@ -1,8 +1,13 @@
-// `fibrenet run SCENE.toml [--out DIR] [--json] [--threads N] [--set KEY=VALUE ...]`: one
-// pipeline run. Progress goes to stderr; metrics to stdout (one JSON document with --json);
-// files only under --out.
+// `fibrenet run SCENE.toml [--out DIR] [--from SNAPSHOT] [--json] [--threads N]
+// [--set KEY=VALUE ...]`: one pipeline run, or its continuation from the snapshot of a
+// network stage that an earlier run wrote. Progress goes to stderr; metrics to stdout (one
+// JSON document with --json); files only under --out.
+#include <unistd.h>
+
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,7 +16,10 @@
 
 #include "app/commands.h"
 #include "campaigns/run_report.h"
+#include "campaigns/campaign_file.h"
 #include "campaigns/scene.h"
+#include "campaigns/stage_snapshot.h"
+#include "engine/core/error.h"
 #include "engine/core/parallel.h"
 #include "engine/pipeline/pipeline.h"
 
@@ -22,6 +30,7 @@ namespace {
 struct RunOptions {
   std::string scene;
   std::string out;
+  std::string from;
   bool json = false;
   int threads = 0;
   std::vector<std::string> overrides;
@@ -39,25 +48,80 @@ void PrintHuman(const pipeline::PipelineReport& report) {
   std::cout << fmt::format("total wall time {:.1f} s\n", report.wall_s);
 }
 
+// The snapshot's stages must be the scene's first stages; the scene's later stages run on.
+campaigns::StageSnapshot LoadStart(const std::string& path, const pipeline::PipelineSpec& spec,
+                                   const campaigns::SnapshotOrigin& scene) {
+  campaigns::StageSnapshot start = campaigns::ReadStageSnapshot(path);
+  const std::string& last = start.state.stages.back().name;
+  if (last == "pressing" && !spec.pressing)
+    throw InputError(fmt::format("{}: holds the network after pressing, but {} has no [pressing] "
+                                 "stage to continue after (accepted: a scene with the snapshot's "
+                                 "stages)", path, scene.scene));
+  if (last != "forming" && last != "pressing")
+    throw InputError(fmt::format("{}: its last stage '{}' is not a network stage (accepted: "
+                                 "forming, pressing)", path, last));
+  if (start.origin.scene_hash != scene.scene_hash || start.origin.seed != scene.seed)
+    std::cerr << fmt::format("note: {} was made from {} (seed {}), not from this scene text and "
+                             "seed; its stages are kept as they are and the stages after {} "
+                             "come from {}\n",
+                             path, start.origin.scene, start.origin.seed, last, scene.scene);
+  return start;
+}
+
 int Run(const RunOptions& o) {
   std::vector<campaigns::Override> overrides;
   for (const std::string& text : o.overrides) overrides.push_back(campaigns::ParseOverride(text));
-  const pipeline::PipelineSpec spec = campaigns::LoadScene(o.scene, overrides);
+  const std::string scene_text = campaigns::ReadSceneText(o.scene);
+  const pipeline::PipelineSpec spec = campaigns::ParseScene(scene_text, o.scene, overrides);
+  // The overrides are part of what made the networks, as the campaigns' stage keys have it.
+  std::string identity = scene_text;
+  for (const campaigns::Override& v : overrides)
+    identity += fmt::format("\n{} = {:.17g}", v.path, v.value);
+  const campaigns::SnapshotOrigin origin{o.scene, campaigns::HashText(identity), spec.seed};
+  std::optional<campaigns::StageSnapshot> start;
+  if (!o.from.empty()) start = LoadStart(o.from, spec, origin);
   if (o.threads > 0) SetThreadCount(o.threads);
 
   pipeline::Progress progress;
   progress.interval_s = o.progress_interval_s;
   progress.report = [](const std::string& line) { std::cerr << line << std::endl; };
   progress.Say(fmt::format("run {}: seed {}, {} thread(s)", o.scene, spec.seed, ThreadCount()));
-  const pipeline::PipelineReport report = pipeline::RunPipeline(spec, progress);
+  std::vector<pipeline::StageState> kept;
+  const pipeline::PipelineReport report = pipeline::RunPipeline(
+      spec, progress, start ? &start->state : nullptr, o.out.empty() ? nullptr : &kept);
   for (const pipeline::StageReport& s : report.stages)
     for (const std::string& w : s.warnings) std::cerr << "warning (" << s.name << "): " << w << "\n";
-  if (!o.out.empty()) campaigns::WriteOutputs(o.out, report);
+  if (!o.out.empty()) {
+    campaigns::WriteOutputs(o.out, report);
+    if (kept.empty() && start) kept.push_back(std::move(start->state));  // only tests ran
+    campaigns::WriteStageSnapshots(o.out, kept, origin, report);
+  }
   if (o.json)
     std::cout << campaigns::ReportJson(report).dump(2) << "\n";
   else
     PrintHuman(report);
   return 0;
+}
+
+// Checks --out before the run, so that a path that cannot become a folder is bad input found
+// at once rather than a failure after the whole simulation: an existing writable folder, or a
+// new one whose nearest existing ancestor is a writable folder. Creates nothing.
+std::string CheckOutFolder(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path path = fs::absolute(fs::path(dir), ec);
+  fs::path existing = path;
+  while (!fs::exists(existing, ec) && existing != existing.parent_path())
+    existing = existing.parent_path();
+  if (!fs::is_directory(existing, ec)) {
+    return fmt::format("'{}' is not a folder{}; accepted: a folder, existing or new",
+                       existing.string(),
+                       existing == path ? "" : fmt::format(", so {} cannot be made", dir));
+  }
+  if (::access(existing.c_str(), W_OK | X_OK) != 0)
+    return fmt::format("folder '{}' is not writable; accepted: a folder fibrenet may write",
+                       existing.string());
+  return "";
 }
 
 }  // namespace
@@ -66,7 +130,11 @@ void AddRunCommand(CLI::App& app, Context& context) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Run the pipeline of one scene file and print metrics");
   cmd->add_option("scene", options->scene, "Scene file (TOML)")->required();
-  cmd->add_option("--out", options->out, "Write metrics, profiles, curves and particles here");
+  cmd->add_option("--out", options->out, "Write metrics, profiles, curves and particles here")
+      ->check(CLI::Validator(CheckOutFolder, "DIR"));
+  cmd->add_option("--from", options->from,
+                  "Continue from a stage snapshot (DIR/snapshots/*.h5 of an earlier --out)")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--json", options->json, "Print one JSON document on stdout");
   cmd->add_option("--threads", options->threads, "OpenMP threads (default: all)")
       ->check(CLI::Range(1, 1024));

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -24,20 +25,41 @@ std::ofstream OpenOut(const std::filesystem::path& path) {
   return out;
 }
 
+// JSON has no NaN: nlohmann writes it as null.
+double Number(const nlohmann::json& j) {
+  return j.is_null() ? std::numeric_limits<double>::quiet_NaN() : j.get<double>();
+}
+
 }  // namespace
+
+nlohmann::json StageJson(const pipeline::StageReport& s) {
+  nlohmann::json details = nlohmann::json::object();
+  for (const auto& [name, value] : s.details) details[name] = value;
+  return {{"name", s.name},
+          {"wall_s", s.wall_s},
+          {"steps", s.steps},
+          {"metrics", MetricsJson(s.metrics)},
+          {"details", details},
+          {"warnings", s.warnings}};
+}
+
+pipeline::StageReport StageFromJson(const nlohmann::json& j) {
+  pipeline::StageReport s;
+  s.name = j.at("name").get<std::string>();
+  s.wall_s = j.at("wall_s").get<double>();
+  s.steps = j.at("steps").get<std::int64_t>();
+  for (const auto& [name, value] : j.at("metrics").items())
+    if (!s.metrics.Set(name, Number(value)))
+      throw Error(fmt::format("stage {}: unknown metric {}", s.name, name));
+  for (const auto& [name, value] : j.at("details").items())
+    s.details.emplace_back(name, Number(value));
+  s.warnings = j.at("warnings").get<std::vector<std::string>>();
+  return s;
+}
 
 nlohmann::json ReportJson(const pipeline::PipelineReport& report) {
   nlohmann::json stages = nlohmann::json::array();
-  for (const pipeline::StageReport& s : report.stages) {
-    nlohmann::json details = nlohmann::json::object();
-    for (const auto& [name, value] : s.details) details[name] = value;
-    stages.push_back({{"name", s.name},
-                      {"wall_s", s.wall_s},
-                      {"steps", s.steps},
-                      {"metrics", MetricsJson(s.metrics)},
-                      {"details", details},
-                      {"warnings", s.warnings}});
-  }
+  for (const pipeline::StageReport& s : report.stages) stages.push_back(StageJson(s));
   nlohmann::json metrics = nlohmann::json::object();
   nlohmann::json units = nlohmann::json::object();
   for (const pipeline::Metric& m : report.AllMetrics()) {
@@ -58,7 +80,8 @@ void WriteOutputs(const std::string& dir, const pipeline::PipelineReport& report
   const fs::path root(dir);
   OpenOut(root / "metrics.json") << ReportJson(report).dump(2) << "\n";
   for (const pipeline::StageReport& s : report.stages) {
-    if (s.name == "tests") continue;  // the tests work on copies: no new profile
+    // The tests work on copies (no new profile); a stage read from a snapshot has none.
+    if (s.name == "tests" || s.metrics.profile.z.empty()) continue;
     auto out = OpenOut(root / (s.name + "_density_profile.csv"));
     out << "z_um,density_kg_per_m3\n";
     for (std::size_t k = 0; k < s.metrics.profile.z.size(); ++k)

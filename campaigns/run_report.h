@@ -15,6 +15,11 @@ namespace fibrenet::campaigns {
 //  "warnings"}], "wall_s": ...}
 nlohmann::json ReportJson(const pipeline::PipelineReport& report);
 
+// One stage's entry of "stages" above, and back (the density profile and pressing curve
+// are not part of it). StageFromJson throws fibrenet::Error on a malformed entry.
+nlohmann::json StageJson(const pipeline::StageReport& stage);
+pipeline::StageReport StageFromJson(const nlohmann::json& j);
+
 // Writes under dir (created if needed): metrics.json, <stage>_density_profile.csv,
 // pressing_curve.csv, the virtual tests' curves under curves/, and the final particles.csv.
 // Throws RunError on I/O failure.

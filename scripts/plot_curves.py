@@ -10,6 +10,7 @@ Recognised by their header:
   bending_*.csv        moment per width against curvature
   roughness_spectrum*  RMS amplitude against wavelength (log-log)
   height_profile.csv   surface height along x
+  *_density_profile.csv  density against height z (--overlay: one line per stage)
   cox_curve.csv        network modulus / affine (Cox) limit against bonded crossings per fibre
   bond_level.csv       tensile modulus and strength against bond level
   anything else        every column against the first
@@ -57,6 +58,8 @@ def kind_of(path, header):
         return "spectrum"
     if "height_um" in header:
         return "profile"
+    if "density_kg_per_m3" in header:
+        return "density"
     if name.startswith("cox_curve"):
         return "cox"
     if name.startswith("bond_level"):
@@ -129,6 +132,11 @@ def draw(ax, kind, header, cols, label):
         ax.plot(cols["x_um"], cols["height_um"], label=label or None)
         ax.set_xlabel("x (um)")
         ax.set_ylabel("height (um)")
+    elif kind == "density":
+        # Height on the vertical axis, as the sheet lies.
+        ax.plot(cols["density_kg_per_m3"], cols["z_um"], label=label or None)
+        ax.set_xlabel("density (kg/m^3)")
+        ax.set_ylabel("z (um)")
     elif kind == "cox":
         x = cols["crossings_per_fibre"]
         for key, name in (("modulus_over_cox", "E / (E_f phi / 3)"),

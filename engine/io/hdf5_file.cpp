@@ -19,6 +19,11 @@ struct Handle {
 
 }  // namespace
 
+bool IsHdf5(const std::string& path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  return H5Fis_hdf5(path.c_str()) > 0;
+}
+
 Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by our exceptions
   file_ = mode == Mode::kCreate ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)
@@ -106,6 +111,48 @@ double Hdf5File::ReadAttribute(const std::string& name) const {
   if (attr.id < 0 || H5Aread(attr.id, H5T_NATIVE_DOUBLE, &value) < 0)
     throw Error(fmt::format("{}: missing attribute {}", path_, name));
   return value;
+}
+
+void Hdf5File::WriteText(const std::string& name, const std::string& value) {
+  // A variable-length UTF-8 string, which h5dump and h5py show as text.
+  Handle type{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_size(type.id, H5T_VARIABLE);
+  H5Tset_cset(type.id, H5T_CSET_UTF8);
+  Handle space{H5Screate(H5S_SCALAR), H5Sclose};
+  Handle attr{H5Acreate2(file_, name.c_str(), type.id, space.id, H5P_DEFAULT, H5P_DEFAULT),
+              H5Aclose};
+  const char* text = value.c_str();
+  if (attr.id < 0 || H5Awrite(attr.id, type.id, &text) < 0)
+    throw Error(fmt::format("{}: cannot write attribute {}", path_, name));
+}
+
+std::string Hdf5File::ReadText(const std::string& name) const {
+  Handle attr{H5Aopen(file_, name.c_str(), H5P_DEFAULT), H5Aclose};
+  if (attr.id < 0) throw Error(fmt::format("{}: missing attribute {}", path_, name));
+  Handle type{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_size(type.id, H5T_VARIABLE);
+  H5Tset_cset(type.id, H5T_CSET_UTF8);
+  char* text = nullptr;
+  if (H5Aread(attr.id, type.id, &text) < 0 || text == nullptr)
+    throw Error(fmt::format("{}: attribute {} is not text", path_, name));
+  std::string value(text);
+  H5free_memory(text);
+  return value;
+}
+
+bool Hdf5File::HasAttribute(const std::string& name) const {
+  return H5Aexists(file_, name.c_str()) > 0;
+}
+
+std::vector<std::string> Hdf5File::AttributeNames() const {
+  std::vector<std::string> names;
+  auto collect = [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
+    static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+    return 0;
+  };
+  if (H5Aiterate2(file_, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names) < 0)
+    throw Error(fmt::format("{}: cannot list attributes", path_));
+  return names;
 }
 
 }  // namespace fibrenet::io

@@ -11,6 +11,9 @@
 
 namespace fibrenet::io {
 
+// True when `path` is a readable HDF5 file.
+bool IsHdf5(const std::string& path);
+
 class Hdf5File {
  public:
   enum class Mode { kCreate, kRead };
@@ -32,6 +35,10 @@ class Hdf5File {
   // Scalar attributes on the root group.
   void WriteAttribute(const std::string& name, double value);
   double ReadAttribute(const std::string& name) const;
+  void WriteText(const std::string& name, const std::string& value);
+  std::string ReadText(const std::string& name) const;
+  bool HasAttribute(const std::string& name) const;
+  std::vector<std::string> AttributeNames() const;  // of the root group
 
  private:
   hid_t file_ = -1;

@@ -163,7 +163,8 @@ void ReadScalars(const Hdf5File& f, World& w) {
 
 }  // namespace
 
-void WriteSnapshot(const World& w, const std::string& path, const PointFields& fields) {
+void WriteSnapshot(const World& w, const std::string& path, const PointFields& fields,
+                   const ExtraWriter& extra) {
   const Particles& p = w.particles;
   for (const auto& [name, values] : fields)
     if (values.size() != p.size())
@@ -251,6 +252,7 @@ void WriteSnapshot(const World& w, const std::string& path, const PointFields& f
     for (const auto& [name, values] : fields) f.WriteDoubles("fields/" + name, values, 1);
     f.CreateGroup("xdmf");
     f.WriteInts("xdmf/bonds", intact, 2);
+    if (extra) extra(f);
   }
   std::error_code ec;
   std::filesystem::rename(partial, path, ec);

@@ -11,6 +11,7 @@
 // scalars are root attributes.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -19,10 +20,16 @@
 
 namespace fibrenet::io {
 
+class Hdf5File;
+
 using PointFields = std::map<std::string, std::vector<double>>;  // one value per particle
 
+// Writes what a layer above the World stores with it (e.g. a fibre table) into the open file.
+using ExtraWriter = std::function<void(Hdf5File&)>;
+
 // Writes `path` (.h5) and, beside it, `path` with extension .xdmf. Throws fibrenet::Error.
-void WriteSnapshot(const World& w, const std::string& path, const PointFields& fields = {});
+void WriteSnapshot(const World& w, const std::string& path, const PointFields& fields = {},
+                   const ExtraWriter& extra = {});
 
 // Reads a snapshot into a fresh World, with contact histories restored into a rebuilt
 // neighbour list. Throws fibrenet::Error naming the file.

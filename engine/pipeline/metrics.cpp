@@ -46,20 +46,39 @@ std::string MetricsSettings::Validate() const {
   return {};
 }
 
+namespace {
+
+// Every scalar metric by name, in the order List() gives them.
+constexpr std::pair<const char*, double NetworkMetrics::*> kScalarMetrics[] = {
+    {"basis_weight_gsm", &NetworkMetrics::basis_weight_gsm},
+    {"thickness_um", &NetworkMetrics::thickness_um},
+    {"density_kg_per_m3", &NetworkMetrics::density_kg_per_m3},
+    {"porosity", &NetworkMetrics::porosity},
+    {"bonds_per_fibre", &NetworkMetrics::bonds_per_fibre},
+    {"bonded_pairs_per_fibre", &NetworkMetrics::bonded_pairs_per_fibre},
+    {"contacts_per_fibre", &NetworkMetrics::contacts_per_fibre},
+    {"crossings_per_fibre", &NetworkMetrics::crossings_per_fibre},
+    {"crossings_per_fibre_kallmes_corte", &NetworkMetrics::crossings_per_fibre_kallmes_corte},
+    {"fibre_count", &NetworkMetrics::fibre_count},
+    {"particle_count", &NetworkMetrics::particle_count},
+    {"out_of_plane_angle_deg_mean", &NetworkMetrics::out_of_plane_angle_deg_mean},
+    {"orientation_anisotropy", &NetworkMetrics::orientation_anisotropy}};
+
+}  // namespace
+
 std::vector<std::pair<std::string, double>> NetworkMetrics::List() const {
-  return {{"basis_weight_gsm", basis_weight_gsm},
-          {"thickness_um", thickness_um},
-          {"density_kg_per_m3", density_kg_per_m3},
-          {"porosity", porosity},
-          {"bonds_per_fibre", bonds_per_fibre},
-          {"bonded_pairs_per_fibre", bonded_pairs_per_fibre},
-          {"contacts_per_fibre", contacts_per_fibre},
-          {"crossings_per_fibre", crossings_per_fibre},
-          {"crossings_per_fibre_kallmes_corte", crossings_per_fibre_kallmes_corte},
-          {"fibre_count", fibre_count},
-          {"particle_count", particle_count},
-          {"out_of_plane_angle_deg_mean", out_of_plane_angle_deg_mean},
-          {"orientation_anisotropy", orientation_anisotropy}};
+  std::vector<std::pair<std::string, double>> list;
+  for (const auto& [name, field] : kScalarMetrics) list.emplace_back(name, this->*field);
+  return list;
+}
+
+bool NetworkMetrics::Set(const std::string& name, double value) {
+  for (const auto& [known, field] : kScalarMetrics)
+    if (name == known) {
+      this->*field = value;
+      return true;
+    }
+  return false;
 }
 
 const char* NetworkMetricUnit(const std::string& name) {

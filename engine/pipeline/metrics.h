@@ -61,6 +61,8 @@ struct NetworkMetrics {
 
   // Name and value of each scalar metric, in a fixed order (for JSON and CSV).
   std::vector<std::pair<std::string, double>> List() const;
+  // Sets the scalar metric `name` (as List() names it); false when there is none.
+  bool Set(const std::string& name, double value);
 };
 
 NetworkMetrics Measure(const Network& net, const MetricsSettings& s);

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# `fibrenet run --out` writes a snapshot per network stage (HDF5 + XDMF), the last one
+# coloured by the fibres' strain energy at the tensile peak; `fibrenet run --from` continues
+# from a snapshot and ends where the uninterrupted run ended; snapshots that do not fit the
+# scene are refused with exit code 2. Usage: run_snapshots_test.sh FIBRENET TINY_SCENE
+set -euo pipefail
+fibrenet=$1
+scene=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# The tiny scene with a short MD tensile test after pressing.
+cp "$scene" scene.toml
+printf '\n[tensile]\ndirection = "MD"\nloading_steps = 1500\nsamples = 40\n' >> scene.toml
+
+"$fibrenet" run scene.toml --out full --json > full.json 2> full.err
+for f in forming.h5 forming.xdmf pressing.h5 pressing.xdmf; do
+  [ -s "full/snapshots/$f" ] || fail "missing snapshot file $f"
+done
+grep -q 'Name="tensile_peak_fibre_energy_J"' full/snapshots/pressing.xdmf \
+  || fail "the last snapshot lacks the tensile-peak fibre energy field"
+grep -q 'Name="fibre"' full/snapshots/forming.xdmf || fail "no fibre id in the XDMF"
+
+# Continue after forming: the same pressing and tensile results, bit for bit.
+"$fibrenet" run scene.toml --from full/snapshots/forming.h5 --out cont --json > cont.json 2> cont.err
+python3 - full.json cont.json <<'PY' || fail "the continued run differs from the uninterrupted one"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert a["metrics"] == b["metrics"], "metrics differ"
+assert [s["name"] for s in a["stages"]] == [s["name"] for s in b["stages"]], "stages differ"
+assert a["stages"][0]["metrics"] == b["stages"][0]["metrics"], "forming report not carried over"
+PY
+[ -s cont/snapshots/pressing.h5 ] || fail "the continued run wrote no pressing snapshot"
+[ ! -e cont/snapshots/forming.h5 ] || fail "the continued run rewrote the forming snapshot"
+
+# A snapshot after pressing cannot continue a scene without pressing.
+python3 - scene.toml > unpressed.toml <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+print(re.sub(r"\[pressing\].*?(?=\[tensile\])", "", text, flags=re.S))
+PY
+set +e
+"$fibrenet" run unpressed.toml --from full/snapshots/pressing.h5 > out.txt 2> err.txt
+rc=$?
+set -e
+[ $rc = 2 ] || fail "exit code $rc for a snapshot that does not fit the scene, expected 2"
+grep -q "full/snapshots/pressing.h5: holds the network after pressing" err.txt \
+  || { cat err.txt; fail "message does not name the snapshot and the stage"; }
+
+# A file that is not a snapshot.
+echo "not hdf5" > bogus.h5
+set +e
+"$fibrenet" run scene.toml --from bogus.h5 > out.txt 2> err.txt
+rc=$?
+set -e
+[ $rc = 2 ] || fail "exit code $rc for a file that is not a snapshot, expected 2"
+grep -q "bogus.h5: not an HDF5 file" err.txt || { cat err.txt; fail "message for a non-HDF5 file"; }
+echo "run snapshots test passed"
