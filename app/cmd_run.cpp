@@ -53,13 +53,11 @@ campaigns::StageSnapshot LoadStart(const std::string& path, const pipeline::Pipe
                                    const campaigns::SnapshotOrigin& scene) {
   campaigns::StageSnapshot start = campaigns::ReadStageSnapshot(path);
   const std::string& last = start.state.stages.back().name;
-  if (last == "pressing" && !spec.pressing)
-    throw InputError(fmt::format("{}: holds the network after pressing, but {} has no [pressing] "
-                                 "stage to continue after (accepted: a scene with the snapshot's "
-                                 "stages)", path, scene.scene));
-  if (last != "forming" && last != "pressing")
-    throw InputError(fmt::format("{}: its last stage '{}' is not a network stage (accepted: "
-                                 "forming, pressing)", path, last));
+  if (last != "forming" && last != spec.Consolidation())
+    throw InputError(fmt::format(
+        "{}: holds the network after {}, but {} has no [{}] stage to continue after (accepted: "
+        "a snapshot after forming{})", path, last, scene.scene, last,
+        spec.Consolidation().empty() ? "" : " or after " + spec.Consolidation()));
   if (start.origin.scene_hash != scene.scene_hash || start.origin.seed != scene.seed)
     std::cerr << fmt::format("note: {} was made from {} (seed {}), not from this scene text and "
                              "seed; its stages are kept as they are and the stages after {} "

@@ -1,6 +1,10 @@
 #include "campaigns/scene.h"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -26,7 +30,8 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 const std::vector<std::string> kSettingTables = {"cell", "fidelity", "fibres", "contact",
                                                  "metrics", "forming"};
 const std::vector<std::string> kRootKeys = {"seed",    "cell",     "fidelity", "fibres",
-                                            "contact", "forming",  "pressing", "metrics",
+                                            "contact", "forming",  "pressing", "through_air",
+                                            "metrics",
                                             "tensile", "compression", "softness"};
 
 std::vector<std::string> Split(const std::string& path) {
@@ -46,7 +51,8 @@ void ApplyOverride(toml::table& root, const Override& o, const std::string& file
   if (parts.empty()) fail("empty key path");
   for (const auto& p : parts)
     if (p.empty()) fail("empty component in the dotted key path");
-  if (!std::isfinite(o.value)) fail("value must be finite");
+  if (!std::isfinite(o.value))
+    fail(fmt::format("{} is not accepted; accepted: a finite number in the key's range", o.value));
   toml::table* t = &root;
   std::string prefix;
   for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
@@ -59,7 +65,7 @@ void ApplyOverride(toml::table& root, const Override& o, const std::string& file
       if (k > 0)
         fail(fmt::format("the scene has no [{}] table{}", prefix,
                          prefix == "pressing.bonding" ? ": an override cannot enable bonding" : ""));
-      if (c == "pressing" || std::find(SceneTestTables().begin(), SceneTestTables().end(), c) !=
+      if (c == "pressing" || c == "through_air" || std::find(SceneTestTables().begin(), SceneTestTables().end(), c) !=
                                  SceneTestTables().end())
         fail(fmt::format("the scene has no [{}] table: an override cannot enable a stage", c));
       if (!setting_table) {
@@ -162,6 +168,44 @@ pipeline::BondingSettings ReadBonding(TableReader& r) {
   return b;
 }
 
+// A relief pattern (embossing bosses, drying-fabric pockets); `height_key` names its height.
+pipeline::ReliefPattern ReadRelief(TableReader& r, const std::string& height_key) {
+  pipeline::ReliefPattern p;
+  p.shape = r.Choice("pattern", "dots", {"dots", "lines"}) == "lines" ? pipeline::ReliefShape::kLines
+                                                                      : pipeline::ReliefShape::kDots;
+  p.pitch = r.Number("pitch_um", 500, OpenClosed(0, 1e5), "um") * 1e-6;
+  p.size = r.Number("size_um", 250, OpenClosed(0, 1e5), "um") * 1e-6;
+  p.height = r.RequiredNumber(height_key, OpenClosed(0, 1e4), "um") * 1e-6;
+  p.flank = r.Number("flank_um", 50, OpenClosed(0, 1e5), "um") * 1e-6;
+  if (p.size > p.pitch) r.Fail("size_um", fmt::format("{:g} um is wider than pitch_um = {:g} um; "
+                                                      "accepted (0, pitch_um]", p.size * 1e6, p.pitch * 1e6));
+  if (p.flank > p.size) r.Fail("flank_um", fmt::format("{:g} um is wider than size_um = {:g} um; "
+                                                       "accepted (0, size_um]", p.flank * 1e6, p.size * 1e6));
+  r.Finish();
+  return p;
+}
+
+pipeline::ThroughAirSettings ReadThroughAir(TableReader& r, ReadContext& ctx) {
+  pipeline::ThroughAirSettings t;
+  const toml::table* fabric = r.Table("fabric");
+  if (!fabric) r.Fail("fabric", "missing table: the drying fabric's pattern (pocket_depth_um, ...)");
+  TableReader fr(fabric, r.Path("fabric"), ctx);
+  t.fabric = ReadRelief(fr, "pocket_depth_um");
+  t.pressure = r.Number("pressure_kPa", 20, OpenClosed(0, 1e4), "kPa") * 1e3;
+  t.wet_stiffness_scale = r.Number("wet_stiffness_scale", 1, OpenClosed(0, 1), "");
+  t.mass_scale = r.Number("mass_scale", 1, Closed(1, 1e8), "");
+  t.damping_time = r.Number("damping_time_us", 10, OpenClosed(0, 1e6), "us") * 1e-6;
+  t.settle_kinetic_ratio = r.Number("settle_kinetic_ratio", 1e-4, Open(0, 1), "");
+  t.set_fibre_shape = r.Bool("set_fibre_shape", true);
+  t.max_steps = r.Integer("max_steps", 5'000'000, 1, 10'000'000'000LL);
+  if (const toml::table* b = r.Table("bonding")) {
+    TableReader br(b, r.Path("bonding"), ctx);
+    t.bonding = ReadBonding(br);
+  }
+  r.Finish();
+  return t;
+}
+
 pipeline::PressingSettings ReadPressing(TableReader& r, ReadContext& ctx) {
   pipeline::PressingSettings p;
   const bool by_thickness = r.Has("target_thickness_um");
@@ -191,6 +235,10 @@ pipeline::PressingSettings ReadPressing(TableReader& r, ReadContext& ctx) {
     TableReader br(b, r.Path("bonding"), ctx);
     p.bonding = ReadBonding(br);
   }
+  if (const toml::table* e = r.Table("emboss")) {
+    TableReader er(e, r.Path("emboss"), ctx);
+    p.emboss = ReadRelief(er, "boss_height_um");
+  }
   r.Finish();
   return p;
 }
@@ -203,6 +251,39 @@ pipeline::MetricsSettings ReadMetrics(TableReader& r) {
   m.profile_bin = r.Number("profile_bin_um", 10, OpenClosed(0, 1e4), "um") * 1e-6;
   r.Finish();
   return m;
+}
+
+// Memory a scene needs per particle, with its bonds and neighbour lists (docs/performance.md
+// measures about 600 bytes; 1 KiB leaves room for contacts in a pressed sheet).
+constexpr double kBytesPerParticle = 1024.0;
+
+std::string Bytes(double bytes) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+  int u = 0;
+  for (; bytes >= 1024.0 && u < 6; ++u) bytes /= 1024.0;
+  return fmt::format("{:.3g} {}", bytes, units[u]);
+}
+
+// Refuses a scene too big for this machine before anything is allocated, instead of failing
+// with bad_alloc (or the OOM killer) deep in forming. The particle count is estimated from the
+// sheet: fibre length = basis weight x cell area / coarseness, one particle per spacing.
+void CheckMemory(const PipelineSpec& spec, const std::string& file) {
+  const pipeline::FibreSpec& f = spec.sheet.fibres;
+  const double fibre_length = spec.sheet.basis_weight * spec.sheet.Lx * spec.sheet.Ly /
+                              f.coarseness.Mean();  // [m]
+  const double spacing = spec.sheet.particle_spacing * f.diameter.Mean();
+  const double particles = std::max(fibre_length / spacing, 2.0 * fibre_length / f.length.Mean());
+  const double memory = static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
+                        static_cast<double>(sysconf(_SC_PAGESIZE));
+  if (memory <= 0.0 || particles * kBytesPerParticle <= memory) return;
+  throw InputError(fmt::format(
+      "{}: cell: the scene would make about {:.3g} particles (cell.basis_weight_gsm x cell area / "
+      "fibres.coarseness_mg_per_100m, one particle per fidelity.particle_spacing_diameters), "
+      "about {} at {:g} bytes per particle, more than this machine's {} of memory; accepted: at "
+      "most about {:.3g} particles here: reduce cell.size_x_mm, cell.size_y_mm or "
+      "cell.basis_weight_gsm, or raise fidelity.particle_spacing_diameters",
+      file, particles, Bytes(particles * kBytesPerParticle), kBytesPerParticle, Bytes(memory),
+      memory / kBytesPerParticle));
 }
 
 PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
@@ -236,6 +317,13 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
     TableReader pr(pressing, "pressing", ctx);
     spec.pressing = ReadPressing(pr, ctx);
   }
+  if (const toml::table* through_air = root.Table("through_air")) {
+    if (spec.pressing)
+      root.Fail("through_air", "a scene has one consolidation stage: [pressing] or "
+                               "[through_air], not both");
+    TableReader tr(through_air, "through_air", ctx);
+    spec.through_air = ReadThroughAir(tr, ctx);
+  }
   TableReader metrics(root.Table("metrics"), "metrics", ctx);
   spec.metrics = ReadMetrics(metrics);
   ReadSceneTests(root, ctx, spec.tests);
@@ -256,6 +344,7 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
                                  spec.sheet.fibres.diameter.Highest() * 1e6));
   if (std::string why = spec.Validate(); !why.empty())
     throw InputError(fmt::format("{}: {}", ctx.file, why));
+  CheckMemory(spec, ctx.file);
   return spec;
 }
 
@@ -264,7 +353,9 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
 Override ParseOverride(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos)
-    throw InputError(fmt::format("override '{}': expected KEY=NUMBER", text));
+    throw InputError(fmt::format("override '{}': no '='; accepted: KEY=NUMBER with a dotted scene "
+                                 "key, e.g. pressing.target_thickness_um=150",
+                                 text));
   Override o;
   o.path = text.substr(0, eq);
   const std::string value = text.substr(eq + 1);
@@ -273,7 +364,9 @@ Override ParseOverride(const std::string& text) {
     o.value = std::stod(value, &used);
     if (used != value.size()) throw std::invalid_argument(value);
   } catch (const std::exception&) {
-    throw InputError(fmt::format("override '{}': '{}' is not a number", text, value));
+    throw InputError(fmt::format("override '{}': '{}' is not a number; accepted: KEY=NUMBER, e.g. "
+                                 "{}=1.5",
+                                 text, value, o.path));
   }
   return o;
 }
@@ -287,6 +380,10 @@ PipelineSpec ParseScene(std::string_view text, const std::string& name,
     throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", name, e.source().begin.line,
                                  e.source().begin.column, e.description()));
   }
+  if (root.empty())
+    throw InputError(fmt::format("{}: the file is empty; accepted: a scene with at least a "
+                                 "[forming] table (docs/scene-files.md)",
+                                 name));
   ReadContext ctx;
   ctx.file = name;
   for (const Override& o : overrides) {
@@ -305,6 +402,9 @@ PipelineSpec ParseScene(std::string_view text, const std::string& name,
 }
 
 std::string ReadSceneText(const std::string& path) {
+  // An ifstream opens a folder without complaint and reads nothing from it.
+  if (std::filesystem::is_directory(path))
+    throw InputError(fmt::format("{}: is a folder; accepted: a scene file (TOML)", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open the scene file (missing or unreadable)", path));
   std::ostringstream text;

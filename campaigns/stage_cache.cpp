@@ -14,7 +14,7 @@ namespace {
 bool DownstreamOf(const std::string& path, std::size_t stage) {
   auto in = [&](const char* table) { return path.rfind(std::string(table) + ".", 0) == 0; };
   const bool tests = in("tensile") || in("compression") || in("softness");
-  return stage == 0 ? tests || in("pressing") : tests;
+  return stage == 0 ? tests || in("pressing") || in("through_air") : tests;
 }
 
 std::size_t Bytes(const pipeline::StageState& s) {

@@ -108,11 +108,14 @@ void AccumulateWallForces(World& w, StepLosses& losses) {
     if (wall.history.size() != p.size()) wall.history.assign(p.size(), Vec3::Zero());
     const bool friction = w.physics.friction && wall.friction;
     const Vec3 normal(0.0, 0.0, static_cast<double>(wall.side));  // points into the particles
+    const Relief* relief = wall.relief.get();
     double fx = 0.0, fy = 0.0, fz = 0.0, damping = 0.0, slip = 0.0, min_ratio = 1.0;
 #pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, damping, slip) \
     reduction(min : min_ratio)
     for (std::int64_t i = 0; i < n; ++i) {
-      const double gap = (p.x[i].z() - wall.z) * wall.side;  // centre to wall
+      const double surface =
+          relief ? wall.z + wall.side * relief->At(p.x[i].x(), p.x[i].y()) : wall.z;
+      const double gap = (p.x[i].z() - surface) * wall.side;  // centre to wall
       if (gap >= p.radius[i]) {
         Vec3& xi = wall.history[i];
         if (xi.x() != 0.0 || xi.y() != 0.0 || xi.z() != 0.0) xi.setZero();

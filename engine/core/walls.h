@@ -4,8 +4,10 @@
 // particle (distance 2 h between a particle and its image, radii R and R).
 #pragma once
 
+#include <memory>
 #include <vector>
 
+#include "engine/core/relief.h"
 #include "engine/core/types.h"
 
 namespace fibrenet {
@@ -15,6 +17,10 @@ struct Wall {
   double vz = 0.0;       // prescribed velocity [m/s]
   int side = +1;         // +1: particles live above (a floor); -1: below (a top plate)
   bool friction = true;  // Coulomb friction with the contact's mu
+  // Optional height map (relief.h): the surface is at z + side * relief(x, y). Shared, so
+  // that copying a World does not copy the grid. Not stored in snapshots: the stages that
+  // use a patterned wall remove it before they end.
+  std::shared_ptr<const Relief> relief;
   // Reaction of the particles on the wall during the last step [N] (z component is the
   // pressing force) and the work the wall has done on the particles since the start [J].
   Vec3 reaction = Vec3::Zero();

@@ -46,6 +46,8 @@ std::string PressingSettings::Validate() const {
     return fmt::format("kinetic_work_tolerance = {}: must lie in (0, 1]", kinetic_work_tolerance);
   if (bonding)
     if (std::string why = bonding->Validate(); !why.empty()) return "bonding." + why;
+  if (emboss)
+    if (std::string why = emboss->Validate(); !why.empty()) return "emboss." + why;
   if (max_steps < 1) return fmt::format("max_steps = {}: must be >= 1", max_steps);
   return {};
 }
@@ -71,7 +73,9 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
   w.walls[0] = Wall{};
   Wall plate;
   plate.side = -1;
-  plate.z = TopSurface(p) + 0.5 * r_max;
+  const double boss = s.emboss ? s.emboss->height : 0.0;
+  if (s.emboss) plate.relief = MakeRelief(*s.emboss, w.cell, +1.0);
+  plate.z = TopSurface(p) + 0.5 * r_max + boss;
   plate.vz = -s.speed;
   w.walls.push_back(plate);
   w.settings.safety = sheet.time_step_safety;
@@ -98,8 +102,13 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
       static_cast<std::int64_t>(0.25 * r_max / (s.speed * w.settings.dt)), 10, 2000);
 
   // 1. Compression to the target gap or pressure.
-  const double floor_gap = 2.0 * r_max;  // the plate never comes closer to the wire
-  const double stop_z = s.target == PressTarget::kThickness ? s.target_thickness : floor_gap;
+  const double floor_gap = 2.0 * r_max + boss;  // the plate never comes closer to the wire
+  const double stop_z =
+      s.target == PressTarget::kThickness ? std::max(s.target_thickness, floor_gap) : floor_gap;
+  if (s.target == PressTarget::kThickness && s.target_thickness < floor_gap)
+    result.warnings.push_back(fmt::format(
+        "pressing: target {:.1f} um is below the boss height plus a fibre diameter; the plate "
+        "stops at {:.1f} um", s.target_thickness * 1e6, stop_z * 1e6));
   const double travel = plate_ref().z - stop_z;
   if (travel > 0.0 && travel / (s.speed * w.settings.dt) > static_cast<double>(s.max_steps))
     throw RunError(fmt::format(
@@ -164,7 +173,8 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
     return fmt::format("pressing: holding at {:.1f} um, pressure {:.4g} Pa, kinetic / work {:.3g}",
                        plate_ref().z * 1e6, pressure(), kinetic / energy_ref);
   };
-  const bool control = s.target == PressTarget::kThickness && s.control == ThicknessControl::kSheet;
+  const bool control = s.target == PressTarget::kThickness &&
+                       s.control == ThicknessControl::kSheet && !s.emboss;
   for (int correction = 0; pressed; ++correction) {
     t_hold = w.time;
     RunUntil(sim, s.max_steps, chunk, at_rest, hold_status, progress);
@@ -194,6 +204,8 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
   result.plate_gap_at_hold = plate_ref().z;
   if (!pressed) result.thickness_at_hold = Thickness(w, metrics.thickness_grid, metrics.surface_percentile);
 
+  if (s.emboss) result.imprint_at_hold = Imprint(w, *plate_ref().relief);
+
   // 3. Bonding in the pressed state.
   if (s.bonding) {
     result.bonds_formed = FormFibreFibreBonds(net, *s.bonding);
@@ -210,13 +222,14 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
   plate_ref().vz = s.speed;
   auto lifted = [&] {
     sample();
-    return plate_ref().reaction.z() <= 0.0 && plate_ref().z > TopSurface(p) + 0.5 * r_max;
+    return plate_ref().reaction.z() <= 0.0 && plate_ref().z - boss > TopSurface(p) + 0.5 * r_max;
   };
   auto lift_status = [&] {
     return fmt::format("pressing: lifting, plate at {:.1f} um, pressure {:.4g} Pa",
                        plate_ref().z * 1e6, pressure());
   };
   if (pressed) RunUntil(sim, s.max_steps, chunk, lifted, lift_status, progress);
+  const std::shared_ptr<const Relief> relief = plate_ref().relief;
   w.walls.pop_back();
   const double t_free = w.time;
   auto relaxed = [&] {
@@ -229,6 +242,7 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
   };
   if (pressed) RunUntil(sim, s.max_steps, chunk, relaxed, relax_status, progress);
   result.settled = !pressed || kinetic < s.settle_kinetic_ratio * energy_ref;
+  if (relief) result.imprint = Imprint(w, *relief);
   if (!result.settled) result.warnings.push_back("pressing: the springback did not come to rest");
 
   result.steps = w.step - step0;

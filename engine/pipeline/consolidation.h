@@ -21,6 +21,7 @@
 #include "engine/pipeline/metrics.h"
 #include "engine/pipeline/network.h"
 #include "engine/pipeline/progress.h"
+#include "engine/pipeline/relief_pattern.h"
 
 namespace fibrenet::pipeline {
 
@@ -50,6 +51,10 @@ struct PressingSettings {
   double settle_kinetic_ratio = 1e-4;
   double kinetic_work_tolerance = 0.01;
   std::optional<BondingSettings> bonding;  // absent: no bonds form
+  // Embossing: bosses of this pattern stand out of the plate. The target thickness is then
+  // the gap between the wire and the plate's land (the boss tips come closer by the boss
+  // height) and the plate is not corrected to a sheet thickness.
+  std::optional<ReliefPattern> emboss;
   bool set_fibre_shape = true;             // fibres keep their pressed shape (see bonding.h)
   std::int64_t max_steps = 5'000'000;      // per phase
 
@@ -74,6 +79,8 @@ struct PressingResult {
   double plate_work = 0.0;               // [J] work the plate did on the web while pressing
   double kinetic_to_work_ratio = 0.0;    // at the end of the compression
   std::size_t bonds_formed = 0;
+  double imprint_at_hold = 0.0;          // embossing: Imprint() at the hold [m]
+  double imprint = 0.0;                  // embossing: Imprint() after springback [m]
   bool settled = false;                  // the springback came to rest
   std::vector<PressPoint> curve;
   std::vector<std::string> warnings;

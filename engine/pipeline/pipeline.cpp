@@ -11,10 +11,20 @@ namespace fibrenet::pipeline {
 std::string PipelineSpec::Validate() const {
   if (std::string why = sheet.Validate(); !why.empty()) return why;
   if (std::string why = forming.Validate(); !why.empty()) return "forming." + why;
+  if (pressing && through_air)
+    return "through_air: a scene has one consolidation stage, [pressing] or [through_air], not both";
   if (pressing)
     if (std::string why = pressing->Validate(); !why.empty()) return "pressing." + why;
+  if (through_air)
+    if (std::string why = through_air->Validate(); !why.empty()) return "through_air." + why;
   if (std::string why = metrics.Validate(); !why.empty()) return "metrics." + why;
   return tests.Validate();
+}
+
+std::string PipelineSpec::Consolidation() const {
+  if (pressing) return "pressing";
+  if (through_air) return "through_air";
+  return "";
 }
 
 std::vector<Metric> PipelineReport::AllMetrics() const {
@@ -34,7 +44,8 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
   const std::size_t done = start ? start->stages.size() : 0;
   if (start) {
     const bool valid = (done == 1 && start->stages[0].name == "forming") ||
-                       (done == 2 && start->stages[1].name == "pressing" && spec.pressing);
+                       (done == 2 && !spec.Consolidation().empty() &&
+                        start->stages[1].name == spec.Consolidation());
     if (!valid) throw Error("RunPipeline: the start state does not match the scene's stages");
     report.stages = start->stages;
     report.network = start->network;
@@ -90,8 +101,31 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
                      {"kinetic_to_work_ratio", r.kinetic_to_work_ratio},
                      {"bonds_formed", static_cast<double>(r.bonds_formed)},
                      {"settled", r.settled ? 1.0 : 0.0}};
+    if (spec.pressing->emboss) {
+      stage.details.emplace_back("imprint_at_hold_um", r.imprint_at_hold * 1e6);
+      stage.details.emplace_back("imprint_um", r.imprint * 1e6);
+    }
     stage.warnings = std::move(r.warnings);
     stage.press_curve = std::move(r.curve);
+    stage.metrics = Measure(report.network, spec.metrics);
+    stage.wall_s = clock.Seconds();
+    report.stages.push_back(std::move(stage));
+    keep();
+  }
+
+  if (spec.through_air && done < 2) {
+    Stopwatch clock;
+    StageReport stage;
+    stage.name = "through_air";
+    ThroughAirResult r = DryThroughAir(report.network, spec.sheet, *spec.through_air, progress);
+    stage.steps = r.steps;
+    stage.details = {{"dt_s", r.dt},
+                     {"air_work_J", r.air_work},
+                     {"imprint_moulded_um", r.imprint_moulded * 1e6},
+                     {"imprint_um", r.imprint * 1e6},
+                     {"bonds_formed", static_cast<double>(r.bonds_formed)},
+                     {"settled", r.settled ? 1.0 : 0.0}};
+    stage.warnings = std::move(r.warnings);
     stage.metrics = Measure(report.network, spec.metrics);
     stage.wall_s = clock.Seconds();
     report.stages.push_back(std::move(stage));

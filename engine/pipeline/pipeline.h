@@ -14,6 +14,7 @@
 #include "engine/pipeline/metrics.h"
 #include "engine/pipeline/network.h"
 #include "engine/pipeline/progress.h"
+#include "engine/pipeline/through_air.h"
 #include "engine/pipeline/virtual_tests.h"
 
 namespace fibrenet::pipeline {
@@ -22,12 +23,17 @@ struct PipelineSpec {
   std::uint64_t seed = 1;
   SheetSpec sheet;
   FormingSettings forming;                  // always runs: it makes the network
-  std::optional<PressingSettings> pressing;  // consolidation, when present
+  // Consolidation, at most one: wet pressing with a flat or embossing plate, or moulding on
+  // a through-air-drying fabric.
+  std::optional<PressingSettings> pressing;
+  std::optional<ThroughAirSettings> through_air;
   MetricsSettings metrics;
   VirtualTestsSpec tests;                   // run on the final network, when any
 
   // Empty when valid; otherwise "<section>.<field>: what is wrong and the accepted range".
   std::string Validate() const;
+  // Name of the consolidation stage ("pressing", "through_air"), empty when there is none.
+  std::string Consolidation() const;
 };
 
 struct StageReport {
@@ -55,7 +61,7 @@ struct PipelineReport {
 // A run whose settings differ from an earlier one only downstream of that stage can start
 // from it instead of making the network again (the campaign stage cache).
 struct StageState {
-  std::vector<StageReport> stages;  // "forming", then "pressing" when it ran
+  std::vector<StageReport> stages;  // "forming", then the consolidation stage when it ran
   Network network;
 };
 
