@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "campaigns/campaign_check.h"
 #include "campaigns/campaign_file.h"
 #include "campaigns/campaign_runner.h"
 #include "campaigns/evaluator.h"
@@ -82,6 +83,7 @@ nlohmann::json ResultJson(const campaigns::CampaignResult& r, const std::string&
 int RunCampaignCommand(const CampaignRunOptions& o) {
   // Every rank reads the campaign and builds the evaluator, so that workers can evaluate.
   const campaigns::CampaignSpec spec = campaigns::LoadCampaignFile(o.campaign_file);
+  campaigns::CheckAgainstBaseScene(spec);  // before the database is touched
   const auto scheduler = optimizer::MakeScheduler(campaigns::MakeEvaluator(spec.base_scene, spec.goals.Metrics()));
   if (!scheduler->is_driver()) {
     scheduler->Serve();

@@ -5,9 +5,11 @@
 //   db best --campaign NAME [-n N]            best candidates, ranked against the goals
 //   db export --campaign NAME --format csv|json [--out FILE]
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -20,6 +22,7 @@
 #include "db/queries.h"
 #include "db/results_db.h"
 #include "engine/core/error.h"
+#include "optimizer/closest_match.h"
 
 namespace fibrenet::cli {
 
@@ -45,6 +48,32 @@ int WithDb(const DbOptions& o, Body body) {
   } catch (const db::DbError& e) {
     throw InputError(fmt::format("--db {}: {}", o.db_path, e.what()));
   }
+}
+
+// The campaign called o.campaign, or InputError listing the campaigns the file holds.
+db::CampaignRow RequireCampaign(const db::ResultsDb& db, const DbOptions& o) {
+  if (auto campaign = db::find_campaign(db, o.campaign)) return *campaign;
+  std::vector<std::string> names;
+  for (const db::CampaignRow& c : db::list_campaigns(db)) names.push_back(c.name);
+  throw InputError(fmt::format("--campaign '{}': no such campaign in {}{}; accepted: {}",
+                               o.campaign, o.db_path, optimizer::DidYouMean(o.campaign, names),
+                               names.empty() ? "none (the database holds no campaign)"
+                                             : fmt::format("{}", fmt::join(names, ", "))));
+}
+
+// CLI11 says only "Could not convert" for a bad integer; this also says what is accepted.
+CLI::Validator IntegerOption(std::int64_t min, const std::string& accepted) {
+  return CLI::Validator(
+      [min, accepted](std::string& text) {
+        try {
+          std::size_t used = 0;
+          const long long v = std::stoll(text, &used);
+          if (used == text.size() && v >= min) return std::string();
+        } catch (const std::exception&) {
+        }
+        return fmt::format("'{}' is not accepted; accepted: {}", text, accepted);
+      },
+      "INTEGER");
 }
 
 std::string Optional(const std::optional<double>& v) {
@@ -73,7 +102,9 @@ int Show(const DbOptions& o) {
   return WithDb(o, [&](const db::ResultsDb& db) {
     const auto row = db::candidate(db, o.candidate_id);
     if (!row)
-      throw InputError(fmt::format("--db {}: no candidate with id {}", o.db_path, o.candidate_id));
+      throw InputError(fmt::format("--db {}: no candidate with id {}; accepted: the id of a stored "
+                                   "candidate (db best and db export list them)",
+                                   o.db_path, o.candidate_id));
     if (o.json) {
       std::cout << nlohmann::json(*row).dump(2) << "\n";
       return 0;
@@ -131,13 +162,9 @@ nlohmann::json GoalStatus(const optimizer::Goals& goals, const db::CandidateRow&
 
 int Best(const DbOptions& o) {
   return WithDb(o, [&](const db::ResultsDb& db) {
-    const auto campaign = db::find_campaign(db, o.campaign);
-    if (!campaign) {
-      throw InputError(
-          fmt::format("--campaign '{}': no such campaign in {}", o.campaign, o.db_path));
-    }
+    const db::CampaignRow campaign = RequireCampaign(db, o);
     const auto rows = db::best(db, o.campaign, o.n);
-    const auto goals = StoredGoals(*campaign);
+    const auto goals = StoredGoals(campaign);
     if (o.json) {
       nlohmann::json list = nlohmann::json::array();
       for (const auto& row : rows) {
@@ -184,10 +211,15 @@ int Export(const DbOptions& o) {
     throw InputError(fmt::format("--format '{}': accepted: csv, json", format));
   }
   return WithDb(o, [&](const db::ResultsDb& db) {
+    RequireCampaign(db, o);
     std::ofstream file;
     if (!o.out.empty()) {
       file.open(o.out, std::ios::binary);
-      if (!file) throw InputError(fmt::format("--out {}: cannot write the file", o.out));
+      if (!file) {
+        throw InputError(fmt::format("--out {}: cannot write the file; accepted: a file in an "
+                                     "existing, writable folder",
+                                     o.out));
+      }
     }
     std::ostream& out = o.out.empty() ? std::cout : file;
     if (format == "json") {
@@ -216,13 +248,17 @@ void AddDbCommand(CLI::App& app, Context& context) {
   list->callback([o, &context] { context.exit_code = List(*o); });
 
   CLI::App* show = dbc->add_subcommand("show", "One candidate in full");
-  show->add_option("candidate", o->candidate_id, "Candidate id")->required();
+  show->add_option("candidate", o->candidate_id, "Candidate id")
+      ->required()
+      ->check(IntegerOption(1, "a candidate id, an integer >= 1"));
   common(show);
   show->callback([o, &context] { context.exit_code = Show(*o); });
 
   CLI::App* best = dbc->add_subcommand("best", "Best candidates of a campaign against its goals");
   best->add_option("--campaign", o->campaign, "Campaign name")->required();
-  best->add_option("-n", o->n, "How many (negative: all)")->capture_default_str();
+  best->add_option("-n", o->n, "How many (negative: all)")
+      ->capture_default_str()
+      ->check(IntegerOption(std::numeric_limits<int>::min(), "an integer (negative: all)"));
   common(best);
   best->callback([o, &context] { context.exit_code = Best(*o); });
 

@@ -23,6 +23,11 @@ using optimizer::ObjectiveKind;
 using optimizer::Target;
 
 std::string ReadFile(const std::string& path, const std::string& what) {
+  // An ifstream opens a folder without complaint and reads nothing from it.
+  if (fs::is_directory(path)) {
+    throw InputError(fmt::format("{}: cannot read {}: it is a folder; accepted: a TOML file", path,
+                                 what));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw InputError(fmt::format("{}: cannot read {} ({})", path, what,
@@ -370,6 +375,12 @@ CampaignSpec ParseCampaign(std::string_view text, const std::string& source,
   } catch (const toml::parse_error& e) {
     throw InputError(Located(source, static_cast<int>(e.source().begin.line), "",
                              "TOML syntax error: " + std::string(e.description())));
+  }
+  if (root.empty()) {
+    throw InputError(fmt::format("{}: the file is empty; accepted: a campaign with base_scene, "
+                                 "[[variables]], [goals] and [algorithm] or [doe] "
+                                 "(docs/campaigns.md)",
+                                 source));
   }
   CampaignSpec spec;
   spec.text = std::string(text);

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "engine/core/error.h"
 #include "optimizer/closest_match.h"
@@ -111,7 +112,7 @@ std::int64_t TableReader::Integer(const std::string& key, std::int64_t fallback,
   } else if (auto d = n->value_exact<double>(); d && std::nearbyint(*d) == *d && std::abs(*d) < 9e15) {
     v = static_cast<std::int64_t>(*d);
   } else {
-    Fail(key, fmt::format("expected an integer, got {}", TypeName(*n)));
+    Fail(key, fmt::format("expected an integer in [{}, {}], got {}", lo, hi, TypeName(*n)));
   }
   if (v < lo || v > hi)
     Fail(key, fmt::format("{} is out of range; accepted integers in [{}, {}]", v, lo, hi));
@@ -213,10 +214,15 @@ void TableReader::Finish() {
     if (std::find(asked_.begin(), asked_.end(), key) != asked_.end()) continue;
     const std::string near = optimizer::ClosestMatch(key, asked_);
     const std::string path = Path(key);
-    throw InputError(fmt::format("{}: unknown key '{}'{}{}", ctx_.file, path,
+    std::vector<std::string> accepted = asked_;
+    std::sort(accepted.begin(), accepted.end());
+    accepted.erase(std::unique(accepted.begin(), accepted.end()), accepted.end());
+    throw InputError(fmt::format("{}: unknown key '{}'{}{}; accepted {}: {}", ctx_.file, path,
                                  ctx_.overrides.count(path) ? " (override)" : "",
                                  near.empty() ? std::string("")
-                                              : fmt::format("; did you mean '{}'?", Path(near))));
+                                              : fmt::format("; did you mean '{}'?", Path(near)),
+                                 prefix_.empty() ? "at the top" : "in [" + prefix_ + "]",
+                                 fmt::join(accepted, ", ")));
   }
 }
 

@@ -2,7 +2,10 @@
 
 #include <SQLiteCpp/Transaction.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include "db/schema.h"
@@ -87,9 +90,45 @@ std::optional<std::string> provenance_text(const std::string& path,
   return provenance.dump();
 }
 
+// Why `path` cannot be opened in `mode`, or "" when it looks openable. SQLite itself says only
+// "unable to open database file"; this names the part of the path that is wrong, and is asked
+// before SQLite runs so that nothing is created next to a path that will be refused.
+std::string path_problem(const std::string& path, OpenMode mode) {
+  namespace fs = std::filesystem;
+  if (path.empty() || path == ":memory:" || path.rfind("file:", 0) == 0) return "";
+  std::error_code ec;
+  const fs::path file(path);
+  const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  const bool writing = mode == OpenMode::kReadWrite;
+  if (fs::is_directory(file, ec)) return "it is a folder; accepted: the path of a database file";
+  const std::string in_folder = "'" + folder.string() + "'";
+  if (!fs::exists(folder, ec)) {
+    return "folder " + in_folder + " does not exist; accepted: a file in an existing folder";
+  }
+  if (!fs::is_directory(folder, ec)) {
+    return in_folder + " is not a folder; accepted: a file in an existing folder";
+  }
+  const bool exists = fs::exists(file, ec);
+  if (!exists && !writing) {
+    return "no such file; accepted: an existing results database (campaign run creates one)";
+  }
+  // A writer needs the folder too: SQLite keeps its WAL and shared-memory files next to the file.
+  if (writing && ::access(folder.c_str(), W_OK | X_OK) != 0) {
+    return "folder " + in_folder + " is not writable; accepted: a file in a writable folder";
+  }
+  if (exists && ::access(path.c_str(), writing ? R_OK | W_OK : R_OK) != 0) {
+    return writing ? "the file is not writable; accepted: a file fibrenet may read and write"
+                   : "the file is not readable; accepted: a file fibrenet may read";
+  }
+  return "";
+}
+
 }  // namespace
 
 ResultsDb::ResultsDb(const std::string& path, OpenMode mode) : path_(path), mode_(mode) {
+  if (const std::string problem = path_problem(path_, mode); !problem.empty()) {
+    throw DbError(detail::message(path_, "cannot open", problem));
+  }
   const int flags = mode == OpenMode::kReadOnly ? SQLite::OPEN_READONLY
                                                 : SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE;
   db_ = detail::guarded(path_, "cannot open", [&] {
