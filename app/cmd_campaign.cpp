@@ -28,7 +28,16 @@ struct CampaignRunOptions {
   std::string db_path;
   bool json = false;
   bool quiet = false;
+  std::string stage_cache;  // folder; "" = next to the database, "none" = memory only
 };
+
+// The stage cache's folder: one per build, since another build may make other networks
+// from the same scene.
+std::string StageFolder(const CampaignRunOptions& o) {
+  if (o.stage_cache == "none") return "";
+  const std::string root = o.stage_cache.empty() ? o.db_path + ".stages" : o.stage_cache;
+  return fmt::format("{}/{}-{}", root, FIBRENET_VERSION, FIBRENET_GIT_COMMIT);
+}
 
 nlohmann::json SummaryJson(const campaigns::CandidateSummary& s) {
   nlohmann::json metrics = nlohmann::json::object();
@@ -84,7 +93,8 @@ int RunCampaignCommand(const CampaignRunOptions& o) {
   // Every rank reads the campaign and builds the evaluator, so that workers can evaluate.
   const campaigns::CampaignSpec spec = campaigns::LoadCampaignFile(o.campaign_file);
   campaigns::CheckAgainstBaseScene(spec);  // before the database is touched
-  const auto scheduler = optimizer::MakeScheduler(campaigns::MakeEvaluator(spec.base_scene, spec.goals.Metrics()));
+  const auto scheduler = optimizer::MakeScheduler(
+      campaigns::MakeEvaluator(spec.base_scene, spec.goals.Metrics(), StageFolder(o)));
   if (!scheduler->is_driver()) {
     scheduler->Serve();
     return 0;
@@ -144,6 +154,9 @@ void AddCampaignCommand(CLI::App& app, Context& context) {
   run->add_option("--db", o->db_path, "Results database (SQLite; created if missing)")->required();
   run->add_flag("--json", o->json, "Print one JSON document on stdout");
   run->add_flag("--quiet", o->quiet, "No progress lines on stderr");
+  run->add_option("--stage-cache", o->stage_cache,
+                  "Folder of the networks kept for reuse (default: DB.stages next to the "
+                  "database; 'none': memory only)");
   run->callback([o, &context] { context.exit_code = RunCampaignCommand(*o); });
 }
 

@@ -6,11 +6,12 @@
 
 namespace fibrenet::campaigns {
 
-Evaluator MakeEvaluator(const std::string& base_scene, const std::vector<std::string>& goal_metrics) {
+Evaluator MakeEvaluator(const std::string& base_scene, const std::vector<std::string>& goal_metrics,
+                        const std::string& stage_folder) {
   if (base_scene.rfind(kAnalyticPrefix, 0) == 0) {
     return MakeAnalyticEvaluator(base_scene.substr(kAnalyticPrefix.size()));
   }
-  return MakeSceneEvaluator(base_scene, goal_metrics);
+  return MakeSceneEvaluator(base_scene, goal_metrics, stage_folder);
 }
 
 }  // namespace fibrenet::campaigns

@@ -22,7 +22,10 @@ using Evaluator = optimizer::EvaluateFn;
 // pipeline (campaigns/scene_evaluator.h). Throws fibrenet::InputError if it cannot be built.
 // `goal_metrics`: the metrics the goals read; a scene evaluation fails when one of them is
 // not finite, and leaves out any other metric that is not (an undefined diagnostic).
+// `stage_folder`: where a scene evaluator's stage cache keeps its networks on disk ("" keeps
+// them in memory only; campaigns/stage_cache.h).
 Evaluator MakeEvaluator(const std::string& base_scene,
-                        const std::vector<std::string>& goal_metrics = {});
+                        const std::vector<std::string>& goal_metrics = {},
+                        const std::string& stage_folder = "");
 
 }  // namespace fibrenet::campaigns

@@ -15,12 +15,13 @@
 namespace fibrenet::campaigns {
 
 Evaluator MakeSceneEvaluator(const std::string& scene_path,
-                             const std::vector<std::string>& goal_metrics) {
+                             const std::vector<std::string>& goal_metrics,
+                             const std::string& stage_folder) {
   // Read and check the base scene once; every evaluation re-reads the text with its own
   // overrides so that validation sees the design's values.
   auto text = std::make_shared<const std::string>(ReadSceneText(scene_path));
   ParseScene(*text, scene_path);
-  auto cache = std::make_shared<StageCache>();
+  auto cache = std::make_shared<StageCache>(std::size_t{1} << 30, stage_folder);
   return [scene_path, text, cache, goal_metrics](const optimizer::Design& design,
                                    const optimizer::Fidelity& fidelity, std::uint64_t seed) {
     std::vector<Override> overrides;

@@ -14,7 +14,9 @@ namespace fibrenet::campaigns {
 // The evaluator of the scene file at `scene_path` (read and checked here: InputError when
 // it is missing or invalid). Each call applies design then fidelity overrides, runs the
 // pipeline with the replicate's seed and returns the final network metrics (and wall_s).
+// `stage_folder`: the stage cache's folder on disk ("" for memory only).
 Evaluator MakeSceneEvaluator(const std::string& scene_path,
-                             const std::vector<std::string>& goal_metrics = {});
+                             const std::vector<std::string>& goal_metrics = {},
+                             const std::string& stage_folder = "");
 
 }  // namespace fibrenet::campaigns

@@ -1,5 +1,7 @@
 #include "engine/io/snapshot.h"
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -171,7 +173,9 @@ void WriteSnapshot(const World& w, const std::string& path, const PointFields& f
       throw Error(fmt::format("{}: field {} has {} values for {} particles", path, name,
                               values.size(), p.size()));
   // Write to a temporary name and rename, so a crash never leaves half a snapshot.
-  const std::string partial = path + ".partial";
+  // The process id keeps processes that write the same snapshot (MPI ranks sharing a stage
+  // cache folder) out of each other's partial file.
+  const std::string partial = fmt::format("{}.partial.{}", path, ::getpid());
   {
     Hdf5File f(partial, Hdf5File::Mode::kCreate);
     WriteScalars(f, w);

@@ -1,5 +1,7 @@
 // The stage cache: keys see exactly what is upstream of a stage, and a run resumed from a
 // kept network reproduces a run from scratch bit for bit.
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -73,6 +75,43 @@ TEST(StageCache, ResumedRunEqualsARunFromScratch) {
   for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << "particle " << i;
   EXPECT_EQ(cache.hits(), 2);
   EXPECT_EQ(cache.misses(), 1);
+}
+
+TEST(StageCache, AFolderCarriesNetworksToTheNextProcess) {
+  const std::string path = kScenes + "/tiny.toml";
+  const std::string text = ReadSceneText(path);
+  const std::vector<Override> first = {{"pressing.speed_m_per_s", 0.5},
+                                       {"pressing.kinetic_work_tolerance", 1.0}};
+  std::vector<Override> second = first;
+  second.push_back({"pressing.target_thickness_um", 170});
+  const std::string folder =
+      (std::filesystem::temp_directory_path() / "fibrenet_stage_cache_test").string();
+  std::filesystem::remove_all(folder);
+
+  {  // One process forms and presses, keeping its networks in the folder.
+    StageCache cache(std::size_t{1} << 30, folder);
+    std::vector<pipeline::StageState> kept;
+    pipeline::RunPipeline(ParseScene(text, path, first), pipeline::Progress{}, nullptr, &kept);
+    cache.Keep(StageKeys(text, first, 7), kept);
+  }
+  // The next (a resumed campaign, another rank) finds the formed network there.
+  StageCache next(std::size_t{1} << 30, folder);
+  const pipeline::StageState* formed = next.Find(StageKeys(text, second, 7));
+  ASSERT_NE(formed, nullptr);
+  ASSERT_EQ(formed->stages.size(), 1u);
+  EXPECT_EQ(next.folder_hits(), 1);
+  const pipeline::PipelineSpec spec = ParseScene(text, path, second);
+  const pipeline::PipelineReport resumed = pipeline::RunPipeline(spec, pipeline::Progress{}, formed);
+  const pipeline::PipelineReport scratch = pipeline::RunPipeline(spec, pipeline::Progress{});
+  EXPECT_EQ(resumed.Final().List(), scratch.Final().List());
+
+  // A damaged file is forgotten, not trusted.
+  const auto keys = StageKeys(text, second, 7);
+  std::ofstream(std::filesystem::path(folder) / (keys[0] + ".h5")) << "damaged";
+  StageCache third(std::size_t{1} << 30, folder);
+  EXPECT_EQ(third.Find(keys), nullptr);
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(folder) / (keys[0] + ".h5")));
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace
