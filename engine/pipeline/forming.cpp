@@ -166,14 +166,7 @@ FormingResult Settle(Network& net, const SheetSpec& sheet, const FormingSettings
                      const Progress& progress) {
   World& w = net.world;
   const SavedMasses masses = ScaleMasses(w, forming.mass_scale);
-  const std::vector<BeamBondParams> types = w.bonds.types;
-  for (const FibreRecord& f : net.fibres) {
-    BeamBondParams& t = w.bonds.types[f.bond_type];
-    t.k_n *= forming.stiffness_scale;
-    t.k_s *= forming.stiffness_scale;
-    t.k_b *= forming.stiffness_scale;
-    t.k_t *= forming.stiffness_scale;
-  }
+  const std::vector<BeamBondParams> types = ScaleFibreStiffness(net, forming.stiffness_scale);
 
   const double g = kGravity * forming.gravity_scale;
   const double v_t = forming.terminal_velocity * std::sqrt(forming.gravity_scale);

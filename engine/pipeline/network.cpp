@@ -99,6 +99,18 @@ SavedMasses ScaleMasses(World& w, double factor) {
   return saved;
 }
 
+std::vector<BeamBondParams> ScaleFibreStiffness(Network& net, double factor) {
+  std::vector<BeamBondParams> saved = net.world.bonds.types;
+  for (const FibreRecord& f : net.fibres) {
+    BeamBondParams& t = net.world.bonds.types[f.bond_type];
+    t.k_n *= factor;
+    t.k_s *= factor;
+    t.k_b *= factor;
+    t.k_t *= factor;
+  }
+  return saved;
+}
+
 void RestoreMasses(World& w, const SavedMasses& saved) {
   Particles& p = w.particles;
   for (std::size_t i = 0; i < p.size(); ++i) {

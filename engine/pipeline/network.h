@@ -64,4 +64,9 @@ struct SavedMasses {
 SavedMasses ScaleMasses(World& w, double factor);
 void RestoreMasses(World& w, const SavedMasses& saved);
 
+// Multiplies the four stiffnesses (k_n, k_s, k_b, k_t) of every fibre's intra-fibre bond
+// type by `factor` (soft falling or wet fibres). Returns the bond types as they were; the
+// caller puts them back (fibre-fibre bond types added meanwhile come after them).
+std::vector<BeamBondParams> ScaleFibreStiffness(Network& net, double factor);
+
 }  // namespace fibrenet::pipeline

@@ -44,14 +44,7 @@ ThroughAirResult DryThroughAir(Network& net, const SheetSpec& sheet, const Throu
     air[i] = Vec3(0.0, 0.0, -s.pressure * ReliefLevel(*fabric, p.x[i].x(), p.x[i].y()) *
                                 p.mass[i] / basis_weight);
   const SavedMasses masses = ScaleMasses(w, s.mass_scale);
-  const std::vector<BeamBondParams> dry_types = w.bonds.types;
-  for (const FibreRecord& f : net.fibres) {
-    BeamBondParams& t = w.bonds.types[f.bond_type];
-    t.k_n *= s.wet_stiffness_scale;
-    t.k_s *= s.wet_stiffness_scale;
-    t.k_b *= s.wet_stiffness_scale;
-    t.k_t *= s.wet_stiffness_scale;
-  }
+  const std::vector<BeamBondParams> dry_types = ScaleFibreStiffness(net, s.wet_stiffness_scale);
 
   w.physics = Physics{};
   w.physics.contacts = true;
