@@ -10,7 +10,8 @@
 
 namespace fibrenet {
 
-enum class BondKind : std::uint8_t { kFibre = 0, kFibreFibre = 1 };
+// kAdhesive: a sheet particle held to a fixed anchor on a surface (the Yankee coating).
+enum class BondKind : std::uint8_t { kFibre = 0, kFibreFibre = 1, kAdhesive = 2 };
 
 // A broken bond, kept for analysis.
 struct BondBreakEvent {

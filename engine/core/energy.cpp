@@ -47,19 +47,28 @@ EnergyReport MeasureEnergy(const World& w) {
       }
     }
   }
-  for (const Wall& wall : w.walls) {
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const double gap = (p.x[i].z() - wall.z) * wall.side;
-      if (gap >= p.radius[i]) continue;
-      // The wall pushes with F(2 gap) of the mirror-image pair, so the potential of that force
-      // over the gap is half the pair's energy (which is the integral over 2 gap).
-      const NormalResult nr = EvaluateVanWyk(2.0 * gap, 2.0 * p.radius[i], w.contact.normal);
-      r.strain.contacts += 0.5 * nr.energy;
-      if (w.physics.friction && wall.friction && i < wall.history.size())
-        r.strain.contacts +=
-            0.5 * w.contact.tangential_ratio * nr.stiffness * wall.history[i].squaredNorm();
-    }
-  }
+  // A surface pushes with F(2 gap) of the mirror-image pair, so the potential of that force
+  // over the gap is half the pair's energy (which is the integral over 2 gap); its hard core
+  // adds a linear spring.
+  auto surface_energy = [&](std::size_t i, double gap, bool friction,
+                            const std::vector<Vec3>& history, double hard_stiffness,
+                            double hard_gap) {
+    if (gap >= p.radius[i] || p.inv_mass[i] == 0.0) return;
+    const NormalResult nr = EvaluateVanWyk(2.0 * gap, 2.0 * p.radius[i], w.contact.normal);
+    r.strain.contacts += 0.5 * nr.energy;
+    if (w.physics.friction && friction && i < history.size())
+      r.strain.contacts += 0.5 * w.contact.tangential_ratio * nr.stiffness * history[i].squaredNorm();
+    const double core = hard_gap * p.radius[i] - gap;
+    if (core > 0.0) r.strain.contacts += 0.5 * hard_stiffness * core * core;
+  };
+  for (const Wall& wall : w.walls)
+    for (std::size_t i = 0; i < p.size(); ++i)
+      surface_energy(i, (p.x[i].z() - wall.z) * wall.side, wall.friction, wall.history,
+                     wall.hard_stiffness, wall.hard_gap);
+  for (const Blade& blade : w.blades)
+    for (std::size_t i = 0; i < p.size(); ++i)
+      surface_energy(i, blade.Nearest(p.x[i]).gap, blade.friction, blade.history,
+                     blade.hard_stiffness, blade.hard_gap);
   return r;
 }
 

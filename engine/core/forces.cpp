@@ -100,6 +100,38 @@ void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses
   losses.min_contact_ratio = std::min(losses.min_contact_ratio, min_ratio);
 }
 
+namespace {
+
+// Contact of particle i with a rigid surface at centre distance `gap`, `normal` pointing from
+// the surface into the particle, the surface moving with `surface_velocity`: the surface acts
+// as the particle's mirror image (centre distance 2 gap, radii R and R, the image's mass
+// infinite), plus the surface's optional hard core below hard_gap radii. Returns the force on
+// the surface (on the particle it is the opposite) and the particle's torque.
+struct SurfaceResult {
+  Vec3 on_surface;
+  Vec3 torque;
+  double damping_power, slip_loss;
+};
+SurfaceResult SurfaceContact(const World& w, std::int64_t i, const Vec3& normal, double gap,
+                             const Vec3& surface_velocity, Vec3& history, bool friction,
+                             double hard_stiffness, double hard_gap) {
+  const Particles& p = w.particles;
+  const double dist = std::max(2.0 * gap, 1e-3 * p.radius[i]);
+  const ContactGeometry g{-dist * normal, dist, p.radius[i], p.radius[i], p.mass[i],
+                          surface_velocity - p.v[i], p.omega[i], Vec3::Zero()};
+  const ContactResult r = EvaluateContact(g, w.contact, history, w.settings.dt, friction);
+  SurfaceResult out{r.force_j, r.torque_i, r.damping_power, r.slip_loss};
+  const double core = hard_gap * p.radius[i] - gap;
+  if (core > 0.0 && hard_stiffness > 0.0) out.on_surface -= hard_stiffness * core * normal;
+  return out;
+}
+
+void ClearHistory(Vec3& xi) {
+  if (xi.x() != 0.0 || xi.y() != 0.0 || xi.z() != 0.0) xi.setZero();
+}
+
+}  // namespace
+
 void AccumulateWallForces(World& w, StepLosses& losses) {
   Particles& p = w.particles;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
@@ -108,6 +140,7 @@ void AccumulateWallForces(World& w, StepLosses& losses) {
     if (wall.history.size() != p.size()) wall.history.assign(p.size(), Vec3::Zero());
     const bool friction = w.physics.friction && wall.friction;
     const Vec3 normal(0.0, 0.0, static_cast<double>(wall.side));  // points into the particles
+    const Vec3 wall_velocity(0.0, 0.0, wall.vz);
     const Relief* relief = wall.relief.get();
     double fx = 0.0, fy = 0.0, fz = 0.0, damping = 0.0, slip = 0.0, min_ratio = 1.0;
 #pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, damping, slip) \
@@ -116,30 +149,60 @@ void AccumulateWallForces(World& w, StepLosses& losses) {
       const double surface =
           relief ? wall.z + wall.side * relief->At(p.x[i].x(), p.x[i].y()) : wall.z;
       const double gap = (p.x[i].z() - surface) * wall.side;  // centre to wall
-      if (gap >= p.radius[i]) {
-        Vec3& xi = wall.history[i];
-        if (xi.x() != 0.0 || xi.y() != 0.0 || xi.z() != 0.0) xi.setZero();
+      // A fixed particle's motion is prescribed: walls act on free particles only.
+      if (gap >= p.radius[i] || p.inv_mass[i] == 0.0) {
+        ClearHistory(wall.history[i]);
         continue;
       }
-      // The wall acts as the particle's mirror image: centre distance 2 gap, radii R, R.
-      const double dist = std::max(2.0 * gap, 1e-3 * p.radius[i]);
-      const Vec3 wall_velocity(0.0, 0.0, wall.vz);
-      const ContactGeometry g{-dist * normal, dist, p.radius[i], p.radius[i], p.mass[i],
-                              wall_velocity - p.v[i], p.omega[i], Vec3::Zero()};
-      const ContactResult r = EvaluateContact(g, w.contact, wall.history[i], dt, friction);
-      // The image sits at j = i - dist * normal; the force on i is -force_j.
-      p.force[i] -= r.force_j;
-      p.torque[i] += r.torque_i;
-      fx += r.force_j.x();
-      fy += r.force_j.y();
-      fz += r.force_j.z();
+      const SurfaceResult r = SurfaceContact(w, i, normal, gap, wall_velocity, wall.history[i],
+                                             friction, wall.hard_stiffness, wall.hard_gap);
+      p.force[i] -= r.on_surface;
+      p.torque[i] += r.torque;
+      fx += r.on_surface.x();
+      fy += r.on_surface.y();
+      fz += r.on_surface.z();
       damping += r.damping_power * dt;
       slip += r.slip_loss;
-      min_ratio = std::min(min_ratio, dist / (2.0 * p.radius[i]));
+      min_ratio = std::min(min_ratio, std::max(gap, 5e-4 * p.radius[i]) / p.radius[i]);
     }
     wall.reaction = Vec3(fx, fy, fz);
     // Energy the moving wall feeds in: force on the particles times the wall's travel.
     wall.work += -fz * wall.vz * dt;
+    losses.damping += damping;
+    losses.friction += slip;
+    losses.min_contact_ratio = std::min(losses.min_contact_ratio, min_ratio);
+  }
+}
+
+void AccumulateBladeForces(World& w, StepLosses& losses) {
+  Particles& p = w.particles;
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+  const double dt = w.settings.dt;
+  for (Blade& blade : w.blades) {
+    if (blade.history.size() != p.size()) blade.history.assign(p.size(), Vec3::Zero());
+    const bool friction = w.physics.friction && blade.friction;
+    double fx = 0.0, fy = 0.0, fz = 0.0, damping = 0.0, slip = 0.0, min_ratio = 1.0;
+#pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, damping, slip) \
+    reduction(min : min_ratio)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Blade::Touch t = blade.Nearest(p.x[i]);
+      if (t.gap >= p.radius[i] || p.inv_mass[i] == 0.0) {
+        ClearHistory(blade.history[i]);
+        continue;
+      }
+      const SurfaceResult r = SurfaceContact(w, i, t.normal, t.gap, blade.velocity, blade.history[i],
+                                             friction, blade.hard_stiffness, blade.hard_gap);
+      p.force[i] -= r.on_surface;
+      p.torque[i] += r.torque;
+      fx += r.on_surface.x();
+      fy += r.on_surface.y();
+      fz += r.on_surface.z();
+      damping += r.damping_power * dt;
+      slip += r.slip_loss;
+      min_ratio = std::min(min_ratio, std::max(t.gap, 5e-4 * p.radius[i]) / p.radius[i]);
+    }
+    blade.reaction = Vec3(fx, fy, fz);
+    blade.work += -blade.reaction.dot(blade.velocity) * dt;
     losses.damping += damping;
     losses.friction += slip;
     losses.min_contact_ratio = std::min(losses.min_contact_ratio, min_ratio);

@@ -22,6 +22,8 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses);
 void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses);
 // Particle-wall contacts; fills each wall's reaction.
 void AccumulateWallForces(World& w, StepLosses& losses);
+// Particle-blade contacts; fills each blade's reaction and work.
+void AccumulateBladeForces(World& w, StepLosses& losses);
 // Starts a force evaluation: sets every force and torque to the body loads switched on
 // (gravity, drag, applied loads), zero otherwise.
 void StartForces(World& w);

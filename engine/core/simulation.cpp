@@ -40,6 +40,7 @@ void Simulation::ComputeForces() {
   if (w_.physics.contacts) AccumulateContactForces(w_, buffers_, losses_);
   buffers_.Reduce();
   if (!w_.walls.empty()) AccumulateWallForces(w_, losses_);
+  if (!w_.blades.empty()) AccumulateBladeForces(w_, losses_);
 }
 
 void Simulation::Step() {
@@ -58,8 +59,10 @@ void Simulation::Step() {
     FailAt(static_cast<std::size_t>(bad), "non-finite position, velocity, orientation or spin");
   double wall_work = 0.0;
   for (const Wall& wall : w_.walls) wall_work -= wall.work;
+  for (const Blade& blade : w_.blades) wall_work -= blade.work;
   ComputeForces();
   for (const Wall& wall : w_.walls) wall_work += wall.work;
+  for (const Blade& blade : w_.blades) wall_work += blade.work;
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (std::int64_t i = 0; i < n; ++i)
     if (!p.force[i].allFinite() || !p.torque[i].allFinite()) bad = std::min(bad, i);
@@ -74,6 +77,7 @@ void Simulation::Step() {
   e.released += losses_.released;
   e.work_walls += wall_work;
   for (Wall& wall : w_.walls) wall.z += wall.vz * w_.settings.dt;
+  for (Blade& blade : w_.blades) blade.tip += blade.velocity * w_.settings.dt;
   w_.min_contact_ratio = std::min(w_.min_contact_ratio, losses_.min_contact_ratio);
   if (losses_.bonds_broke) w_.neighbours.Invalidate();
   w_.time += w_.settings.dt;

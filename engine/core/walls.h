@@ -17,6 +17,10 @@ struct Wall {
   double vz = 0.0;       // prescribed velocity [m/s]
   int side = +1;         // +1: particles live above (a floor); -1: below (a top plate)
   bool friction = true;  // Coulomb friction with the contact's mu
+  // Hard core of a steel surface (blade.h): a linear spring of hard_stiffness [N/m] below a
+  // centre distance of hard_gap radii. 0 = off.
+  double hard_stiffness = 0.0;
+  double hard_gap = 0.5;
   // Optional height map (relief.h): the surface is at z + side * relief(x, y). Shared, so
   // that copying a World does not copy the grid. Not stored in snapshots: the stages that
   // use a patterned wall remove it before they end.

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/core/blade.h"
 #include "engine/core/bonds.h"
 #include "engine/core/cell.h"
 #include "engine/core/neighbour_list.h"
@@ -64,6 +65,7 @@ struct World {
   ContactParams contact;
   Physics physics;
   std::vector<Wall> walls;
+  std::vector<Blade> blades;
   // Per-particle applied loads (used when physics.applied_loads) [N], [N m].
   std::vector<Vec3> applied_force, applied_torque;
   StepSettings settings;
