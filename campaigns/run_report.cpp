@@ -93,6 +93,8 @@ void WriteOutputs(const std::string& dir, const pipeline::PipelineReport& report
         curve << p.time << "," << p.plate_z * 1e6 << "," << p.pressure << "," << p.kinetic << "\n";
     }
   }
+  for (const pipeline::StageReport& s : report.stages)
+    pipeline::WriteCurves(s.curves, (root / "curves").string());
   if (report.tests) pipeline::WriteCurves(report.tests->curves, (root / "curves").string());
   const World& w = report.network.world;
   auto out = OpenOut(root / "particles.csv");

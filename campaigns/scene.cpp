@@ -31,7 +31,7 @@ const std::vector<std::string> kSettingTables = {"cell", "fidelity", "fibres", "
                                                  "metrics", "forming"};
 const std::vector<std::string> kRootKeys = {"seed",    "cell",     "fidelity", "fibres",
                                             "contact", "forming",  "pressing", "through_air",
-                                            "metrics",
+                                            "creping", "metrics",
                                             "tensile", "compression", "softness"};
 
 std::vector<std::string> Split(const std::string& path) {
@@ -65,7 +65,7 @@ void ApplyOverride(toml::table& root, const Override& o, const std::string& file
       if (k > 0)
         fail(fmt::format("the scene has no [{}] table{}", prefix,
                          prefix == "pressing.bonding" ? ": an override cannot enable bonding" : ""));
-      if (c == "pressing" || c == "through_air" || std::find(SceneTestTables().begin(), SceneTestTables().end(), c) !=
+      if (c == "pressing" || c == "through_air" || c == "creping" || std::find(SceneTestTables().begin(), SceneTestTables().end(), c) !=
                                  SceneTestTables().end())
         fail(fmt::format("the scene has no [{}] table: an override cannot enable a stage", c));
       if (!setting_table) {
@@ -243,6 +243,35 @@ pipeline::PressingSettings ReadPressing(TableReader& r, ReadContext& ctx) {
   return p;
 }
 
+pipeline::CrepingSettings ReadCreping(TableReader& r, ReadContext& ctx) {
+  pipeline::CrepingSettings c;
+  c.yankee_speed = r.Number("yankee_speed_m_per_s", 30, OpenClosed(0, 200), "m/s");
+  c.creping_angle = r.Number("creping_angle_deg", 85, Closed(30, 150), "deg") * kDeg;
+  c.crepe_ratio = r.Number("crepe_ratio_percent", 15, Closed(0, 200), "%") * 1e-2;
+  c.takeaway_height = r.Number("takeaway_height_um", 0, Closed(0, 1e5), "um (0 = 3 x the caliper)") * 1e-6;
+  c.takeaway_time = r.Number("takeaway_time_us", 2, OpenClosed(0, 1e6), "us") * 1e-6;
+  c.tip_clearance = r.Number("tip_clearance_um", 0, Closed(0, 1000), "um") * 1e-6;
+  c.blade_hard_stiffness = r.Number("blade_hard_stiffness_N_per_m", 3e4, Closed(0, 1e9), "N/m");
+  c.curve_samples = static_cast<int>(r.Integer("curve_samples", 200, 2, 100000));
+  c.impact_frames = static_cast<int>(r.Integer("impact_frames", 0, 0, 1000));
+  c.max_steps = r.Integer("max_steps", 20'000'000, 1, 10'000'000'000LL);
+  if (const toml::table* a = r.Table("adhesion")) {
+    TableReader ar(a, r.Path("adhesion"), ctx);
+    pipeline::AdhesionSettings& ad = c.adhesion;
+    ad.F_r0 = ar.Number("F_r0_mN", 10, OpenClosed(0, 1e6), "mN") * 1e-3;
+    ad.F_s0 = ar.Number("F_s0_mN", 10, OpenClosed(0, 1e6), "mN") * 1e-3;
+    ad.strength_cv = ar.Number("strength_cv", 0, Closed(0, 2), "");
+    ad.modulus = ar.Number("modulus_MPa", 100, OpenClosed(0, 1e6), "MPa") * 1e6;
+    ad.shear_modulus = ar.Number("shear_modulus_MPa", 30, OpenClosed(0, 1e6), "MPa") * 1e6;
+    ad.coating_thickness = ar.Number("coating_thickness_um", 5, OpenClosed(0, 1000), "um") * 1e-6;
+    ad.bond_radius_fraction = ar.Number("bond_radius_fraction", 0.5, OpenClosed(0, 1), "");
+    ad.reach = ar.Number("reach_radii", 0.5, Closed(0, 1), "particle radii");
+    ar.Finish();
+  }
+  r.Finish();
+  return c;
+}
+
 pipeline::MetricsSettings ReadMetrics(TableReader& r) {
   pipeline::MetricsSettings m;
   m.fibre_density = r.Number("fibre_density_kg_per_m3", 1500, OpenClosed(0, 1e5), "kg/m^3");
@@ -323,6 +352,12 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
                                "[through_air], not both");
     TableReader tr(through_air, "through_air", ctx);
     spec.through_air = ReadThroughAir(tr, ctx);
+  }
+  if (const toml::table* creping = root.Table("creping")) {
+    if (!spec.pressing && !spec.through_air)
+      root.Fail("creping", "the sheet is creped after consolidation: add [pressing] or [through_air]");
+    TableReader cr(creping, "creping", ctx);
+    spec.creping = ReadCreping(cr, ctx);
   }
   TableReader metrics(root.Table("metrics"), "metrics", ctx);
   spec.metrics = ReadMetrics(metrics);

@@ -17,7 +17,9 @@ namespace {
 bool DownstreamOf(const std::string& path, std::size_t stage) {
   auto in = [&](const char* table) { return path.rfind(std::string(table) + ".", 0) == 0; };
   const bool tests = in("tensile") || in("compression") || in("softness");
-  return stage == 0 ? tests || in("pressing") || in("through_air") : tests;
+  if (stage == 0) return tests || in("pressing") || in("through_air") || in("creping");
+  if (stage == 1) return tests || in("creping");
+  return tests;
 }
 
 std::size_t Bytes(const pipeline::StageState& s) {
@@ -34,7 +36,7 @@ std::vector<std::string> StageKeys(const std::string& scene_text,
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const Override& a, const Override& b) { return a.path < b.path; });
   std::vector<std::string> keys;
-  for (std::size_t stage = 0; stage < 2; ++stage) {
+  for (std::size_t stage = 0; stage < 3; ++stage) {  // forming, consolidation, creping
     std::string canonical = fmt::format("seed {}\n", seed);
     for (std::size_t k = 0; k < sorted.size(); ++k) {
       const bool last = k + 1 == sorted.size() || sorted[k + 1].path != sorted[k].path;

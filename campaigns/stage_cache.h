@@ -26,7 +26,8 @@
 
 namespace fibrenet::campaigns {
 
-// Keys of the network stages, in pipeline order: [0] after forming, [1] after pressing.
+// Keys of the network stages, in pipeline order: [0] after forming, [1] after consolidation
+// (pressing or through-air drying), [2] after creping.
 std::vector<std::string> StageKeys(const std::string& scene_text, const std::vector<Override>& overrides,
                                    std::uint64_t seed);
 

@@ -8,6 +8,7 @@
 #include "campaigns/run_report.h"
 #include "engine/core/error.h"
 #include "engine/io/network_snapshot.h"
+#include "engine/io/snapshot.h"
 
 namespace fibrenet::campaigns {
 
@@ -41,6 +42,13 @@ void WriteStageSnapshots(const std::string& dir, const std::vector<pipeline::Sta
     const std::string path = (folder / (state.stages.back().name + ".h5")).string();
     try {
       WriteStageSnapshot(state, path, origin, fields);
+      // Frames taken during the stage (creping's impact): particles with their velocity, so
+      // that ParaView colours them by speed as paper Fig. 6 does.
+      const std::vector<World>& frames = state.stages.back().frames;
+      for (std::size_t f = 0; f < frames.size(); ++f)
+        io::WriteSnapshot(frames[f], (folder / fmt::format("{}_frame_{:03d}.h5",
+                                                           state.stages.back().name, f))
+                                         .string());
     } catch (const Error& e) {
       throw RunError(e.what());
     }

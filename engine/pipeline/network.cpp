@@ -121,4 +121,24 @@ void RestoreMasses(World& w, const SavedMasses& saved) {
   }
 }
 
+void TransformRigidly(World& w, const Mat3& R, const Vec3& shift) {
+  const Quat qR(R);
+  Particles& p = w.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.x[i] = R * p.x[i] + shift;
+    p.v[i] = R * p.v[i];
+    p.omega[i] = R * p.omega[i];
+    p.q[i] = (qR * p.q[i]).normalized();
+  }
+  for (std::size_t k = 0; k < w.neighbours.size(); ++k)
+    w.neighbours.History(k) = R * w.neighbours.History(k);
+  for (Wall& wall : w.walls)
+    for (Vec3& h : wall.history) h = R * h;
+  for (Blade& blade : w.blades)
+    for (Vec3& h : blade.history) h = R * h;
+  for (Vec3& f : w.applied_force) f = R * f;
+  for (Vec3& t : w.applied_torque) t = R * t;
+  w.neighbours.Invalidate();
+}
+
 }  // namespace fibrenet::pipeline

@@ -64,6 +64,11 @@ struct SavedMasses {
 SavedMasses ScaleMasses(World& w, double factor);
 void RestoreMasses(World& w, const SavedMasses& saved);
 
+// Moves the whole world rigidly, x -> R x + shift (R a rotation): positions, velocities,
+// spins, orientations, and the tangential histories of contacts and walls turn with it;
+// bonds keep their state (it lives in the particles' body frames). The cell is left alone.
+void TransformRigidly(World& w, const Mat3& R, const Vec3& shift);
+
 // Multiplies the four stiffnesses (k_n, k_s, k_b, k_t) of every fibre's intra-fibre bond
 // type by `factor` (soft falling or wet fibres). Returns the bond types as they were; the
 // caller puts them back (fibre-fibre bond types added meanwhile come after them).

@@ -17,6 +17,11 @@ std::string PipelineSpec::Validate() const {
     if (std::string why = pressing->Validate(); !why.empty()) return "pressing." + why;
   if (through_air)
     if (std::string why = through_air->Validate(); !why.empty()) return "through_air." + why;
+  if (creping) {
+    if (!pressing && !through_air)
+      return "creping: the sheet is creped after consolidation; add [pressing] or [through_air]";
+    if (std::string why = creping->Validate(); !why.empty()) return "creping." + why;
+  }
   if (std::string why = metrics.Validate(); !why.empty()) return "metrics." + why;
   return tests.Validate();
 }
@@ -27,10 +32,30 @@ std::string PipelineSpec::Consolidation() const {
   return "";
 }
 
+namespace {
+
+// The creping details that are also results a campaign may aim at, with their units.
+const char* CrepingMetricUnit(const std::string& name) {
+  static const std::vector<std::pair<std::string, const char*>> units = {
+      {"crepe_frequency_per_mm", "1/mm"}, {"crepe_amplitude_um", "um"},
+      {"bonds_broken_fraction", "-"},     {"dust_count", "-"},
+      {"dust_mass_fraction", "-"},        {"bulk_gain", "-"},
+      {"energy_balance_error", "-"}};
+  for (const auto& [n, unit] : units)
+    if (n == name) return unit;
+  return nullptr;
+}
+
+}  // namespace
+
 std::vector<Metric> PipelineReport::AllMetrics() const {
   std::vector<Metric> all;
   if (!stages.empty())
     for (const auto& [name, value] : Final().List()) all.push_back({name, value, NetworkMetricUnit(name)});
+  for (const StageReport& stage : stages)
+    if (stage.name == "creping")
+      for (const auto& [name, value] : stage.details)
+        if (const char* unit = CrepingMetricUnit(name)) all.push_back({name, value, unit});
   if (tests) all.insert(all.end(), tests->metrics.begin(), tests->metrics.end());
   return all;
 }
@@ -43,9 +68,11 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
   std::mt19937_64 rng(spec.seed);
   const std::size_t done = start ? start->stages.size() : 0;
   if (start) {
+    const bool consolidated = done >= 2 && !spec.Consolidation().empty() &&
+                              start->stages[1].name == spec.Consolidation();
+    const bool creped = done == 3 && spec.creping && start->stages[2].name == "creping";
     const bool valid = (done == 1 && start->stages[0].name == "forming") ||
-                       (done == 2 && !spec.Consolidation().empty() &&
-                        start->stages[1].name == spec.Consolidation());
+                       (consolidated && (done == 2 || creped));
     if (!valid) throw Error("RunPipeline: the start state does not match the scene's stages");
     report.stages = start->stages;
     report.network = start->network;
@@ -127,6 +154,42 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
                      {"settled", r.settled ? 1.0 : 0.0}};
     stage.warnings = std::move(r.warnings);
     stage.metrics = Measure(report.network, spec.metrics);
+    stage.wall_s = clock.Seconds();
+    report.stages.push_back(std::move(stage));
+    keep();
+  }
+
+  if (spec.creping && done < 3) {
+    Stopwatch clock;
+    StageReport stage;
+    stage.name = "creping";
+    const MetricsSettings& m = spec.metrics;
+    CrepingResult r = Crepe(report.network, spec.sheet, *spec.creping, m, spec.seed, progress);
+    stage.steps = r.steps;
+    stage.details = {{"dt_s", r.dt},
+                     {"simulated_time_us", r.simulated_time * 1e6},
+                     {"crepe_frequency_per_mm", r.crepe_frequency * 1e-3},
+                     {"crepe_amplitude_um", r.crepe_amplitude * 1e6},
+                     {"bonds_broken_fraction", r.bonds_broken_fraction},
+                     {"fibre_bonds_broken", r.fibre_bonds_broken},
+                     {"adhesive_bonds", static_cast<double>(r.adhesive_bonds)},
+                     {"adhesive_broken_fraction", r.adhesive_broken_fraction},
+                     {"dust_count", static_cast<double>(r.dust_count)},
+                     {"dust_mass_fraction", r.dust_mass_fraction},
+                     {"caliper_before_um", r.caliper_before * 1e6},
+                     {"caliper_after_um", r.caliper_after * 1e6},
+                     {"bulk_gain", r.bulk_gain},
+                     {"energy_balance_error", r.energy_balance_error},
+                     {"blade_work_J", r.blade_work},
+                     {"peak_blade_force_N_per_m", r.peak_blade_force},
+                     {"particles_past_blade", static_cast<double>(r.particles_past_blade)},
+                     {"min_contact_ratio", r.min_contact_ratio},
+                     {"bonds_cut_at_ends", static_cast<double>(r.bonds_cut)}};
+    stage.warnings = std::move(r.warnings);
+    stage.curves.push_back(std::move(r.bond_loss));
+    if (!r.crepe_profile.rows.empty()) stage.curves.push_back(std::move(r.crepe_profile));
+    stage.frames = std::move(r.impact_frames);
+    stage.metrics = Measure(report.network, m);
     stage.wall_s = clock.Seconds();
     report.stages.push_back(std::move(stage));
     keep();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/pipeline/consolidation.h"
+#include "engine/pipeline/creping.h"
 #include "engine/pipeline/forming.h"
 #include "engine/pipeline/metrics.h"
 #include "engine/pipeline/network.h"
@@ -27,6 +28,7 @@ struct PipelineSpec {
   // a through-air-drying fabric.
   std::optional<PressingSettings> pressing;
   std::optional<ThroughAirSettings> through_air;
+  std::optional<CrepingSettings> creping;   // after consolidation, when present
   MetricsSettings metrics;
   VirtualTestsSpec tests;                   // run on the final network, when any
 
@@ -44,6 +46,8 @@ struct StageReport {
   std::vector<std::pair<std::string, double>> details;  // stage-specific numbers
   std::vector<std::string> warnings;
   std::vector<PressPoint> press_curve;                   // pressing only
+  std::vector<Curve> curves;                             // other stage curves (creping)
+  std::vector<World> frames;                             // snapshots during the stage
 };
 
 struct PipelineReport {
@@ -61,7 +65,7 @@ struct PipelineReport {
 // A run whose settings differ from an earlier one only downstream of that stage can start
 // from it instead of making the network again (the campaign stage cache).
 struct StageState {
-  std::vector<StageReport> stages;  // "forming", then the consolidation stage when it ran
+  std::vector<StageReport> stages;  // "forming", then consolidation and creping when they ran
   Network network;
 };
 

@@ -91,25 +91,11 @@ void QuarterTurn(Network& net) {
   const Vec3 lo = c.lo, hi = c.hi;
   Mat3 R;
   R << 0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0;
-  const Quat qR(R);
-  Particles& p = w.particles;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const Vec3 x = p.x[i];
-    p.x[i] = Vec3(lo.x() + (x.y() - lo.y()), lo.y() + (hi.x() - x.x()), x.z());
-    p.v[i] = R * p.v[i];
-    p.omega[i] = R * p.omega[i];
-    p.q[i] = (qR * p.q[i]).normalized();
-  }
+  // (x, y) -> (lo.x + y - lo.y, lo.y + hi.x - x): the turned cell starts where this one did.
+  TransformRigidly(w, R, Vec3(lo.x() - lo.y(), lo.y() + hi.x(), 0.0));
   c.hi = Vec3(lo.x() + c.Ly(), lo.y() + (hi.x() - lo.x()), hi.z());
   std::swap(c.periodic_x, c.periodic_y);
-  for (Vec3& x : p.x) c.Wrap(x);
-  for (std::size_t k = 0; k < w.neighbours.size(); ++k)
-    w.neighbours.History(k) = R * w.neighbours.History(k);
-  for (Wall& wall : w.walls)
-    for (Vec3& h : wall.history) h = R * h;
-  for (Vec3& f : w.applied_force) f = R * f;
-  for (Vec3& t : w.applied_torque) t = R * t;
-  w.neighbours.Invalidate();
+  for (Vec3& x : w.particles.x) c.Wrap(x);
 }
 
 std::size_t CutAlongX(Network& net, double margin) {

@@ -113,6 +113,13 @@ variant s17.toml scene.toml 's/^\[pressing\]$/[pressing/'
 bad s17 "s17.toml:32:10: TOML syntax error" -- run s17.toml
 mkdir s18.toml
 bad s18 "s18.toml: is a folder; accepted: a scene file (TOML)" -- run s18.toml
+variant s19.toml scene.toml '$a [creping]\ncreping_angle_deg = 170'
+bad s19 "s19.toml: creping.creping_angle_deg: 170 is out of range; accepted [30, 150] deg" \
+  -- run s19.toml
+sed '/^\[pressing/,$d' scene.toml > s20.toml
+printf '[creping]\nyankee_speed_m_per_s = 30\n' >> s20.toml
+bad s20 "s20.toml: creping: the sheet is creped after consolidation: add [pressing] or [through_air]" \
+  -- run s20.toml
 
 # --- the run command line -------------------------------------------------------------------
 bad r01 "scene.toml: unknown key 'fibres.lenght_mm' (override); did you mean 'fibres.length_mm'?" \

@@ -18,8 +18,9 @@ const std::string kScenes = FIBRENET_SCENES_DIR;
 TEST(StageKeys, SeeOnlyWhatIsUpstream) {
   const std::string text = "scene text";
   const auto base = StageKeys(text, {{"pressing.target_thickness_um", 150}, {"fibres.length_mm", 0.4}}, 7);
-  ASSERT_EQ(base.size(), 2u);
+  ASSERT_EQ(base.size(), 3u);  // forming, consolidation, creping
   EXPECT_NE(base[0], base[1]);
+  EXPECT_NE(base[1], base[2]);
   // Order of the overrides does not matter; the last of a repeated path wins.
   EXPECT_EQ(base, StageKeys(text, {{"fibres.length_mm", 0.4}, {"pressing.target_thickness_um", 150}}, 7));
   EXPECT_EQ(base, StageKeys(text, {{"fibres.length_mm", 0.3}, {"fibres.length_mm", 0.4},
@@ -28,6 +29,13 @@ TEST(StageKeys, SeeOnlyWhatIsUpstream) {
   const auto pressed = StageKeys(text, {{"pressing.target_thickness_um", 120}, {"fibres.length_mm", 0.4}}, 7);
   EXPECT_EQ(pressed[0], base[0]);
   EXPECT_NE(pressed[1], base[1]);
+  EXPECT_NE(pressed[2], base[2]);
+  // A creping setting changes the creped key only.
+  const auto creped = StageKeys(text, {{"pressing.target_thickness_um", 150}, {"fibres.length_mm", 0.4},
+                                       {"creping.creping_angle_deg", 75}}, 7);
+  EXPECT_EQ(creped[0], base[0]);
+  EXPECT_EQ(creped[1], base[1]);
+  EXPECT_NE(creped[2], base[2]);
   const auto tested = StageKeys(text, {{"pressing.target_thickness_um", 150}, {"fibres.length_mm", 0.4},
                                        {"tensile.strain_rate_per_s", 5}}, 7);
   EXPECT_EQ(tested, base);

@@ -1,0 +1,407 @@
+#include "engine/pipeline/creping.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <random>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "engine/core/energy.h"
+#include "engine/core/error.h"
+#include "engine/core/simulation.h"
+#include "engine/pipeline/crepe_profile.h"
+#include "engine/pipeline/test_rig.h"
+
+namespace fibrenet::pipeline {
+
+namespace {
+
+constexpr int kStrengthClasses = 16;
+
+// x with Phi(x) = q for the standard normal distribution, by bisection on erfc.
+double NormalQuantile(double q) {
+  double lo = -10.0, hi = 10.0;
+  for (int k = 0; k < 100; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 * std::erfc(-mid / std::sqrt(2.0)) < q ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Strength factors of equiprobable classes of a lognormal distribution of mean 1.
+std::vector<double> StrengthClasses(double cv) {
+  if (cv <= 0.0) return {1.0};
+  const double sigma2 = std::log1p(cv * cv), sigma = std::sqrt(sigma2);
+  std::vector<double> f(kStrengthClasses);
+  for (int k = 0; k < kStrengthClasses; ++k)
+    f[k] = std::exp(-0.5 * sigma2 + sigma * NormalQuantile((k + 0.5) / kStrengthClasses));
+  return f;
+}
+
+// Pieces of the sheet: connected components of the first n particles over intact fibre and
+// fibre-fibre bonds. Returns each particle's piece label.
+std::vector<std::int32_t> Pieces(const World& w, std::size_t n) {
+  std::vector<std::int32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](std::int32_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  const Bonds& b = w.bonds;
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    if (b.broken[k] || b.kind[k] == BondKind::kAdhesive) continue;
+    const std::int32_t a = find(b.i[k]), c = find(b.j[k]);
+    if (a != c) parent[std::max(a, c)] = std::min(a, c);
+  }
+  for (std::size_t i = 0; i < n; ++i) parent[i] = find(static_cast<std::int32_t>(i));
+  return parent;
+}
+
+// The sheet seen from a frame with origin `origin` and axes (e_u, y, e_h).
+std::vector<FramePoint> InFrame(const Particles& p, const std::vector<std::size_t>& which,
+                                const Vec3& origin, const Vec3& e_u, const Vec3& e_h) {
+  std::vector<FramePoint> pts;
+  pts.reserve(which.size());
+  for (std::size_t i : which) {
+    const Vec3 rel = p.x[i] - origin;
+    pts.push_back({Vec3(rel.dot(e_u), p.x[i].y(), rel.dot(e_h)), p.radius[i]});
+  }
+  return pts;
+}
+
+// Drops the particles from n on and the bonds and bond types from the given counts on (the
+// anchors and their adhesive bonds, all appended after the sheet's).
+void DropAnchors(World& w, std::size_t n, std::size_t bonds, std::size_t types) {
+  Particles& p = w.particles;
+  for (auto* v : {&p.x, &p.v, &p.omega, &p.force, &p.torque}) v->resize(n);
+  p.q.resize(n);
+  for (auto* v : {&p.radius, &p.mass, &p.inv_mass, &p.inertia, &p.inv_inertia}) v->resize(n);
+  p.fibre.resize(n);
+  Bonds& b = w.bonds;
+  b.i.resize(bonds);
+  b.j.resize(bonds);
+  b.type.resize(bonds);
+  b.kind.resize(bonds);
+  b.state.resize(bonds);
+  b.broken.resize(bonds);
+  b.types.resize(types);
+  std::erase_if(b.events, [&](const BondBreakEvent& e) {
+    return e.bond >= static_cast<std::int32_t>(bonds);
+  });
+}
+
+}  // namespace
+
+std::string AdhesionSettings::Validate() const {
+  if (!(F_r0 > 0.0 && std::isfinite(F_r0))) return fmt::format("F_r0 = {} N: must be finite and > 0", F_r0);
+  if (!(F_s0 > 0.0 && std::isfinite(F_s0))) return fmt::format("F_s0 = {} N: must be finite and > 0", F_s0);
+  if (!(strength_cv >= 0.0 && strength_cv <= 2.0))
+    return fmt::format("strength_cv = {}: must lie in [0, 2]", strength_cv);
+  if (!(modulus > 0.0 && modulus <= 1e12)) return fmt::format("modulus = {} Pa: must lie in (0, 1e12]", modulus);
+  if (!(shear_modulus > 0.0 && shear_modulus <= 1e12))
+    return fmt::format("shear_modulus = {} Pa: must lie in (0, 1e12]", shear_modulus);
+  if (!(bond_radius_fraction > 0.0 && bond_radius_fraction <= 1.0))
+    return fmt::format("bond_radius_fraction = {}: must lie in (0, 1]", bond_radius_fraction);
+  if (!(reach >= 0.0 && reach <= 1.0)) return fmt::format("reach = {}: must lie in [0, 1]", reach);
+  if (!(coating_thickness > 0.0 && coating_thickness <= 1e-3))
+    return fmt::format("coating_thickness = {} m: must lie in (0, 1e-3]", coating_thickness);
+  return {};
+}
+
+std::string CrepingSettings::Validate() const {
+  if (!(yankee_speed > 0.0 && yankee_speed <= 200.0))
+    return fmt::format("yankee_speed = {} m/s: must lie in (0, 200]", yankee_speed);
+  const double deg = 180.0 / 3.14159265358979323846;
+  if (!(creping_angle * deg >= 30.0 && creping_angle * deg <= 150.0))
+    return fmt::format("creping_angle = {} deg: must lie in [30, 150]", creping_angle * deg);
+  if (!(crepe_ratio >= 0.0 && crepe_ratio <= 2.0))
+    return fmt::format("crepe_ratio = {}: must lie in [0, 2]", crepe_ratio);
+  if (!(takeaway_height >= 0.0 && takeaway_height <= 0.1))
+    return fmt::format("takeaway_height = {} m: must lie in [0, 0.1] (0 = 3 x the caliper)", takeaway_height);
+  if (!(takeaway_time > 0.0 && takeaway_time <= 1.0))
+    return fmt::format("takeaway_time = {} s: must lie in (0, 1]", takeaway_time);
+  if (!(tip_clearance >= 0.0 && tip_clearance <= 1e-3))
+    return fmt::format("tip_clearance = {} m: must lie in [0, 1e-3]", tip_clearance);
+  if (curve_samples < 2 || curve_samples > 100000)
+    return fmt::format("curve_samples = {}: must lie in [2, 100000]", curve_samples);
+  if (impact_frames < 0 || impact_frames > 1000)
+    return fmt::format("impact_frames = {}: must lie in [0, 1000]", impact_frames);
+  if (max_steps < 1) return fmt::format("max_steps = {}: must be >= 1", max_steps);
+  if (!(blade_hard_stiffness >= 0.0 && blade_hard_stiffness <= 1e9))
+    return fmt::format("blade_hard_stiffness = {} N/m: must lie in [0, 1e9]", blade_hard_stiffness);
+  if (std::string why = adhesion.Validate(); !why.empty()) return "adhesion." + why;
+  return {};
+}
+
+CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings& s,
+                    const MetricsSettings& metrics, std::uint64_t seed, const Progress& progress) {
+  if (std::string why = s.Validate(); !why.empty()) throw InputError("creping." + why);
+  World& w = net.world;
+  Particles& p = w.particles;
+  CrepingResult out;
+  const std::size_t n_sheet = p.size(), n_bonds = w.bonds.size(), n_types = w.bonds.types.size();
+  if (n_sheet == 0) throw Error("Crepe: empty network");
+  std::vector<std::size_t> all(n_sheet);
+  std::iota(all.begin(), all.end(), std::size_t{0});
+
+  // The sheet before creping, as a finite strip along MD.
+  const double x0 = w.cell.lo.x(), x1 = w.cell.hi.x(), Ly = w.cell.Ly();
+  const double y_bin = metrics.thickness_grid, u_bin = metrics.profile_bin;
+  out.caliper_before = MeasureCrepeProfile(InFrame(p, all, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitZ()),
+                                           x0, x1, u_bin, w.cell.lo.y(), w.cell.hi.y(), y_bin,
+                                           metrics.surface_percentile).caliper;
+  const double takeaway = s.takeaway_height > 0.0 ? s.takeaway_height : 3.0 * out.caliper_before;
+  const double run_out = 2.0 * takeaway * (1.0 + s.crepe_ratio);
+  const double cot = std::cos(s.creping_angle) / std::sin(s.creping_angle);
+  out.bonds_cut = CutAlongX(net, run_out + takeaway + std::abs(cot) * (x1 - x0) + 1e-4);
+
+  std::vector<std::size_t> fibre_fibre;
+  std::size_t fibre_bonds_intact = 0;
+  for (std::size_t b = 0; b < n_bonds; ++b) {
+    if (w.bonds.broken[b]) continue;
+    if (w.bonds.kind[b] == BondKind::kFibreFibre) fibre_fibre.push_back(b);
+    fibre_bonds_intact += w.bonds.kind[b] == BondKind::kFibre;
+  }
+
+  // Physics of the impact: contacts and friction, no body loads but the reel's draw.
+  w.physics.gravity = false;
+  w.physics.drag = false;
+  w.physics.contacts = true;
+  w.physics.friction = w.contact.mu > 0.0;
+  w.physics.applied_loads = true;
+  w.walls.assign(1, Wall{});  // the Yankee surface, at rest in its own frame, steel like the blade
+  w.walls[0].hard_stiffness = s.blade_hard_stiffness;
+  w.blades.clear();
+
+  // Glue the bottom particles to anchors, their mirror images under the surface.
+  const AdhesionSettings& a = s.adhesion;
+  const std::vector<double> classes = StrengthClasses(a.strength_cv);
+  std::mt19937_64 rng(seed ^ 0x6372657065ULL);
+  std::uniform_int_distribution<int> pick(0, static_cast<int>(classes.size()) - 1);
+  std::map<std::pair<double, int>, std::int32_t> types;
+  double r_max = 0.0, x_front = -1e300;
+  for (std::size_t i = 0; i < n_sheet; ++i) {
+    r_max = std::max(r_max, p.radius[i]);
+    x_front = std::max(x_front, p.x[i].x() + p.radius[i] + std::abs(cot) * p.x[i].z());
+    const double z = p.x[i].z(), R = p.radius[i];
+    if (!(z > 0.0 && z - R <= a.reach * R)) continue;
+    const int c = pick(rng);
+    auto it = types.find({R, c});
+    if (it == types.end()) {
+      // A thin glue layer of thickness t over a patch of radius r_b: k_n = E A / t,
+      // k_s = G A / t, k_b = E I / t, k_t = G J / t.
+      const double r_b = a.bond_radius_fraction * R, area = kPi * r_b * r_b;
+      const double I = 0.25 * kPi * r_b * r_b * r_b * r_b, t = a.coating_thickness;
+      BeamBondParams params;
+      params.k_n = a.modulus * area / t;
+      params.k_s = a.shear_modulus * area / t;
+      params.k_b = a.modulus * I / t;
+      params.k_t = a.shear_modulus * 2.0 * I / t;
+      params.failure = BondFailure::kHill;
+      params.F_r0 = a.F_r0 * classes[c];
+      params.F_s0 = a.F_s0 * classes[c];
+      params.HillDefaults();
+      it = types.emplace(std::make_pair(R, c), w.bonds.AddType(params)).first;
+    }
+    const std::size_t anchor =
+        p.Add(Vec3(p.x[i].x(), p.x[i].y(), -z), R, p.mass[i], -1, sheet.inertia_scale);
+    p.Fix(anchor);
+    w.bonds.Add(static_cast<std::int32_t>(i), static_cast<std::int32_t>(anchor), it->second,
+                BondKind::kAdhesive, MakeBondState(p.x[anchor] - p.x[i], p.q[i], p.q[anchor]));
+    ++out.adhesive_bonds;
+  }
+  if (out.adhesive_bonds == 0)
+    throw InputError("creping.adhesion.reach: no particle of the sheet lies within reach of the "
+                     "Yankee surface; accepted: a larger reach (up to 1)");
+  w.applied_force.assign(p.size(), Vec3::Zero());
+  w.applied_torque.assign(p.size(), Vec3::Zero());
+
+  Blade blade = Blade::AtAngle(Vec3(x_front + 0.1 * r_max, 0.0, s.tip_clearance), s.creping_angle);
+  blade.velocity = Vec3(-s.yankee_speed, 0.0, 0.0);
+  blade.hard_stiffness = s.blade_hard_stiffness;
+  w.blades.push_back(blade);
+  const Vec3 face_up = blade.face_up, face_normal = blade.face_normal;
+  const Vec3 v_reel = blade.velocity + s.yankee_speed / (1.0 + s.crepe_ratio) * face_up;
+
+  w.settings.dt = 0.0;
+  w.settings.safety = sheet.time_step_safety;
+  w.neighbours.Invalidate();
+  Simulation sim(w);
+  if (std::string warning = sim.Prepare(); !warning.empty()) out.warnings.push_back(warning);
+  out.dt = w.settings.dt;
+  const double travel = (blade.tip.x() - x0) + run_out;
+  const std::int64_t steps = static_cast<std::int64_t>(std::ceil(travel / (s.yankee_speed * out.dt)));
+  if (steps > s.max_steps)
+    throw InputError(fmt::format("creping.max_steps: the blade needs {} steps of {:.3g} s to pass "
+                                 "the {:.3g} mm sheet; accepted: max_steps >= {}",
+                                 steps, out.dt, (x1 - x0) * 1e3, steps));
+
+  const double accounted0 = MeasureEnergy(w).Accounted(w.energy);
+  const double t0 = w.time;
+  const std::int64_t every = std::max<std::int64_t>(1, steps / s.curve_samples);
+  const std::int64_t frame_every =
+      s.impact_frames > 0 ? std::max<std::int64_t>(1, steps / s.impact_frames) : 0;
+  out.bond_loss.name = "creping_bond_loss";
+  out.bond_loss.columns = {"time_us", "fibre_fibre_broken_fraction", "adhesive_broken_fraction",
+                           "fibre_bonds_broken", "blade_force_N_per_m", "kinetic_J",
+                           "energy_balance_error"};
+  const std::int64_t n_all = static_cast<std::int64_t>(p.size());
+  const double rate = 1.0 / s.takeaway_time;
+  auto broken_share = [&](BondKind kind) {
+    std::size_t broken = 0, total = 0;
+    for (std::size_t b = 0; b < w.bonds.size(); ++b) {
+      if (w.bonds.kind[b] != kind) continue;
+      ++total;
+      broken += w.bonds.broken[b];
+    }
+    return std::pair<std::size_t, std::size_t>{broken, total};
+  };
+  auto ff_broken = [&] {
+    std::size_t broken = 0;
+    for (std::size_t b : fibre_fibre) broken += w.bonds.broken[b];
+    return fibre_fibre.empty() ? 0.0 : double(broken) / double(fibre_fibre.size());
+  };
+  auto fibre_broken = [&] {
+    std::size_t intact = 0;
+    for (std::size_t b = 0; b < n_bonds; ++b)
+      intact += w.bonds.kind[b] == BondKind::kFibre && !w.bonds.broken[b];
+    return static_cast<double>(fibre_bonds_intact - intact);
+  };
+  Stopwatch clock;
+  double next_report = progress.interval_s;
+  for (std::int64_t step = 1; step <= steps; ++step) {
+    const Vec3 tip = w.blades[0].tip;
+#pragma omp parallel for schedule(static) if (n_all >= 4096)
+    for (std::int64_t i = 0; i < n_all; ++i) {
+      const Vec3 rel = p.x[i] - tip;
+      const double along = rel.x() * face_up.x() + rel.z() * face_up.z();
+      w.applied_force[i] = along > takeaway && p.inv_mass[i] > 0.0
+                               ? Vec3(-p.mass[i] * rate * (p.v[i] - v_reel))
+                               : Vec3(Vec3::Zero());
+    }
+    sim.Step();
+    out.peak_blade_force = std::max(out.peak_blade_force, w.blades[0].reaction.x() / Ly);
+    if (frame_every > 0 && step % frame_every == 0 &&
+        static_cast<int>(out.impact_frames.size()) < s.impact_frames)
+      out.impact_frames.push_back(w);
+    if (step % every != 0 && step != steps) continue;
+    std::size_t past = 0;
+    const Blade& bl = w.blades[0];
+    for (std::size_t i = 0; i < n_sheet; ++i)
+      past += (p.x[i] - bl.tip).dot(face_normal) < 0.0;
+    out.particles_past_blade = std::max(out.particles_past_blade, past);
+    const double blade_work = bl.work;
+    const double error = blade_work > 0.0
+                             ? std::abs(MeasureEnergy(w).Accounted(w.energy) - accounted0) / blade_work
+                             : 0.0;
+    const double ff = ff_broken();
+    out.bond_loss.Add({(w.time - t0) * 1e6, ff, double(broken_share(BondKind::kAdhesive).first) /
+                                             double(out.adhesive_bonds),
+                       fibre_broken(), bl.reaction.x() / Ly, KineticEnergy(w), error});
+    if (progress.report && clock.Seconds() >= next_report) {
+      progress.Say(fmt::format("creping: {:.0f}% of the sheet scraped, t = {:.1f} us, fibre-fibre "
+                               "bonds broken {:.1f}%",
+                               100.0 * std::min(1.0, double(step) / double(steps)), (w.time - t0) * 1e6,
+                               100.0 * ff));
+      next_report = clock.Seconds() + progress.interval_s;
+    }
+  }
+  out.steps = steps;
+  out.simulated_time = steps * out.dt;
+  out.blade_work = w.blades[0].work;
+  out.energy_balance_error = out.bond_loss.rows.back().back();
+  out.bonds_broken_fraction = ff_broken();
+  out.fibre_bonds_broken = fibre_broken();
+  out.adhesive_broken_fraction =
+      double(broken_share(BondKind::kAdhesive).first) / double(out.adhesive_bonds);
+  out.min_contact_ratio = w.min_contact_ratio;
+
+  // Pieces: the creped sheet is the heaviest; pieces still glued stay on the Yankee; the rest
+  // is dust.
+  const std::vector<std::int32_t> piece = Pieces(w, n_sheet);
+  std::vector<double> mass(n_sheet, 0.0);
+  std::vector<std::uint8_t> glued(n_sheet, 0);
+  for (std::size_t i = 0; i < n_sheet; ++i) mass[piece[i]] += p.mass[i];
+  for (std::size_t b = n_bonds; b < w.bonds.size(); ++b)
+    if (!w.bonds.broken[b]) glued[piece[w.bonds.i[b]]] = 1;
+  const std::int32_t sheet_piece =
+      static_cast<std::int32_t>(std::max_element(mass.begin(), mass.end()) - mass.begin());
+  const double total_mass = std::accumulate(mass.begin(), mass.end(), 0.0);
+  double dust_mass = 0.0;
+  for (std::size_t k = 0; k < n_sheet; ++k) {
+    if (piece[k] != static_cast<std::int32_t>(k) || static_cast<std::int32_t>(k) == sheet_piece ||
+        glued[k])
+      continue;
+    ++out.dust_count;
+    dust_mass += mass[k];
+  }
+  out.dust_mass_fraction = dust_mass / total_mass;
+
+  // The creped sheet in the frame of the blade face: u up the face, h out of it.
+  const Vec3 tip = w.blades[0].tip;
+  std::vector<std::size_t> creped;
+  for (std::size_t i = 0; i < n_sheet; ++i)
+    if (piece[i] == sheet_piece) creped.push_back(i);
+  const std::vector<FramePoint> pts = InFrame(p, creped, tip, face_up, face_normal);
+  double u_max = takeaway, h_min = 1e300;
+  for (const FramePoint& f : pts) {
+    u_max = std::max(u_max, f.x.x());
+    h_min = std::min(h_min, f.x.z() - f.radius);
+  }
+  // The first tenth of the creped sheet (its leading end) is left out: it crept before the
+  // folding settled into its rhythm.
+  const double u_hi = u_max - 0.1 * (u_max - takeaway);
+  if (u_hi - takeaway < 10.0 * u_bin) {
+    out.warnings.push_back(fmt::format(
+        "creping: only {:.0f} um of creped sheet beyond the takeaway height ({:.0f} um): too "
+        "short for a crepe spectrum; use a longer cell (cell.size_x_mm)",
+        (u_hi - takeaway) * 1e6, takeaway * 1e6));
+  } else {
+    const CrepeProfile profile = MeasureCrepeProfile(pts, takeaway, u_hi, u_bin, w.cell.lo.y(),
+                                                     w.cell.hi.y(), y_bin, metrics.surface_percentile);
+    const CrepeSpectrum spectrum = AnalyseCrepe(profile.height, u_bin);
+    out.crepe_frequency = spectrum.frequency;
+    out.crepe_amplitude = spectrum.amplitude;
+    out.caliper_after = profile.caliper;
+    out.bulk_gain = out.caliper_before > 0.0 ? out.caliper_after / out.caliper_before : 0.0;
+    out.crepe_profile.name = "crepe_profile";
+    out.crepe_profile.columns = {"u_um", "height_um"};
+    for (std::size_t k = 0; k < profile.height.size(); ++k)
+      out.crepe_profile.Add({(takeaway + (k + 0.5) * u_bin) * 1e6, profile.height[k] * 1e6});
+  }
+  if (out.particles_past_blade > 0)
+    out.warnings.push_back(fmt::format("creping: {} particles got behind the blade face",
+                                       out.particles_past_blade));
+
+  // Lay the creped sheet flat: (u, y, h) -> (x, y, z), its base on z = 0, at rest.
+  DropAnchors(w, n_sheet, n_bonds, n_types);
+  w.blades.clear();
+  w.applied_force.clear();
+  w.applied_torque.clear();
+  w.physics.applied_loads = false;
+  Mat3 R;
+  R.row(0) = face_up.transpose();
+  R.row(1) = Vec3::UnitY().transpose();
+  R.row(2) = face_normal.transpose();
+  TransformRigidly(w, R, -(R * tip) - Vec3(0.0, 0.0, h_min));
+  double lo = 1e300, hi = -1e300;
+  for (std::size_t i : creped) {
+    lo = std::min(lo, p.x[i].x() - p.radius[i]);
+    hi = std::max(hi, p.x[i].x() + p.radius[i]);
+  }
+  for (std::size_t i = 0; i < n_sheet; ++i) {
+    p.v[i].setZero();
+    p.omega[i].setZero();
+    w.cell.Wrap(p.x[i]);
+  }
+  w.cell.lo.x() = lo - r_max;
+  w.cell.hi.x() = hi + r_max;
+  w.walls.assign(1, Wall{});
+  w.neighbours.Invalidate();
+  return out;
+}
+
+}  // namespace fibrenet::pipeline

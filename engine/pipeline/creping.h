@@ -1,0 +1,107 @@
+// Creping (paper 3.3): the pressed sheet, glued to the Yankee dryer by its coating, meets the
+// doctor blade at the Yankee speed; it is scraped off, buckles into folds against the blade,
+// loses bonds and sheds dust, and leaves along the blade face towards the reel.
+//
+// Frame. The simulation runs in the frame of the Yankee surface: the surface (the plane
+// z = 0) and the glued sheet are at rest and the blade moves at -yankee_speed along x (MD).
+// Over the simulated length (a few mm) the Yankee's curvature (radius 2-3 m) changes the
+// surface height by well under a micrometre, a small fraction of a fibre radius, so a flat
+// surface is enough. The sheet is cut open along MD (a finite strip, fibres crossing its
+// ends cut) and stays periodic across (CD). Real inertia: no mass scaling; bond failure on.
+//
+// Adhesion. Every particle whose bottom lies within adhesion.reach radii of the surface is
+// held by an adhesive beam bond (BondKind::kAdhesive) to a fixed anchor, its mirror image
+// below the surface. The bond has the stiffness of a glue layer (moduli E_c, G_c, thickness
+// t_c) over a patch of radius bond_radius_fraction R, and fails by the Hill criterion of the fibre-fibre
+// bonds with the coating's peel and shear strengths, which may scatter (lognormal,
+// strength_cv, sampled in 16 equiprobable classes).
+//
+// The reel. The creped sheet is drawn away along the blade face at the reel speed
+// yankee_speed / (1 + crepe_ratio): particles beyond takeaway_height along the face from the
+// tip feel a drag of relaxation time takeaway_time towards that velocity (in the Yankee
+// frame: the blade's velocity plus the reel speed along the face). The drag moves the sheet
+// rigidly and so does not reshape its folds; its work is booked as applied work.
+//
+// Metrics. The creped sheet (the largest piece held together by intact bonds, beyond the
+// takeaway height) is read in its own frame (u along the face, h normal to it):
+// crepe_profile.h gives the crepe frequency (folds per mm of creped sheet) and amplitude, and
+// the caliper against the sheet's before creping (bulk_gain). Dust: every other piece.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/pipeline/curves.h"
+#include "engine/pipeline/forming.h"
+#include "engine/pipeline/metrics.h"
+#include "engine/pipeline/network.h"
+#include "engine/pipeline/progress.h"
+
+namespace fibrenet::pipeline {
+
+struct AdhesionSettings {
+  double F_r0 = 10e-3;               // peel (tensile) strength of one adhesive bond [N]
+  double F_s0 = 10e-3;               // shear strength [N]
+  double strength_cv = 0.0;          // scatter of both strengths (lognormal), [0, 2]
+  double modulus = 1e8;              // coating's Young's modulus E_c [Pa]
+  double shear_modulus = 3e7;        // coating's shear modulus [Pa]
+  double coating_thickness = 5e-6;   // t_c [m]
+  double bond_radius_fraction = 0.5; // glued patch radius / particle radius, (0, 1]
+  double reach = 0.5;                // glue particles whose bottom is this many radii up, [0, 1]
+
+  std::string Validate() const;
+};
+
+struct CrepingSettings {
+  double yankee_speed = 30.0;        // [m/s]
+  double creping_angle = 1.4835298641951802;  // blade face to the Yankee surface [rad] (85 deg)
+  double crepe_ratio = 0.15;         // Yankee speed / reel speed - 1
+  double takeaway_height = 0.0;      // [m] along the face; 0 = 3 x the sheet's caliper
+  double takeaway_time = 2e-6;       // [s]
+  double tip_clearance = 0.0;        // blade tip above the surface [m]
+  // Hard core of the steel blade and Yankee against a collapsed fibre wall (blade.h) [N/m]:
+  // about the transverse modulus (1 GPa) times a particle's length along the fibre (32 um).
+  double blade_hard_stiffness = 3e4;
+  AdhesionSettings adhesion;
+  int curve_samples = 200;           // rows of the bond-loss curve
+  int impact_frames = 0;             // snapshots kept during the impact (paper Fig. 6)
+  std::int64_t max_steps = 20'000'000;
+
+  std::string Validate() const;
+};
+
+struct CrepingResult {
+  std::int64_t steps = 0;
+  double dt = 0.0;
+  double simulated_time = 0.0;             // [s]
+  std::size_t adhesive_bonds = 0;
+  std::size_t bonds_cut = 0;                // fibre and fibre-fibre bonds cut at the MD ends
+  double bonds_broken_fraction = 0.0;      // fibre-fibre bonds broken / those at the start
+  double fibre_bonds_broken = 0.0;         // intra-fibre bonds broken (fibres that broke)
+  double adhesive_broken_fraction = 0.0;
+  double crepe_frequency = 0.0;             // [1/m] of creped sheet
+  double crepe_amplitude = 0.0;             // [m]
+  double caliper_before = 0.0, caliper_after = 0.0;  // [m]
+  double bulk_gain = 0.0;
+  std::size_t dust_count = 0;
+  double dust_mass_fraction = 0.0;
+  double energy_balance_error = 0.0;        // |accounted change| / blade work
+  double blade_work = 0.0;                  // [J]
+  double peak_blade_force = 0.0;            // [N per m of width]
+  std::size_t particles_past_blade = 0;     // most free particles behind the face at once
+  double min_contact_ratio = 1.0;
+  Curve bond_loss;                          // time since the start of creping, broken
+                                            // fractions, blade force, energies
+  Curve crepe_profile;                      // u, height of the creped sheet's top surface
+  std::vector<World> impact_frames;         // the world at evenly spaced times of the impact
+  std::vector<std::string> warnings;
+};
+
+// Crepes the sheet; on return `net` holds the creped sheet laid in the sheet frame (x along
+// its MD, z up from its base, open along x, periodic along y) on the floor z = 0, anchors
+// and blade removed. Throws RunError when the run goes unstable.
+CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings& s,
+                    const MetricsSettings& metrics, std::uint64_t seed, const Progress& progress);
+
+}  // namespace fibrenet::pipeline

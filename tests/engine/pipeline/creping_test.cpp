@@ -1,0 +1,110 @@
+// Creping of a small pressed sheet (0.9 mm along MD): stable at the default Yankee speed and
+// at twice it, nothing through the blade, the impact's energy accounted for, the sheet
+// scraped off the Yankee, bonds lost, and a crepe read from the creped sheet.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/pipeline/creping.h"
+#include "engine/pipeline/crepe_profile.h"
+#include "engine/pipeline/pipeline.h"
+#include "tests/engine/pipeline/tiny_spec.h"
+
+namespace fibrenet::pipeline {
+namespace {
+
+// The tiny sheet on a 0.9 mm x 0.45 mm cell, formed and pressed once per test process.
+const PipelineReport& Pressed() {
+  static const PipelineReport report = [] {
+    PipelineSpec spec = testing::TinySpec();
+    spec.sheet.Lx = 0.9e-3;
+    spec.sheet.Ly = 0.45e-3;
+    return RunPipeline(spec, Progress{});
+  }();
+  return report;
+}
+
+// The reel draws the sheet from 200 um up the blade face: a short run-out on this short sheet.
+CrepingSettings Settings() {
+  CrepingSettings s;
+  s.takeaway_height = 200e-6;
+  return s;
+}
+
+struct Creped {
+  Network net;
+  CrepingResult result;
+};
+
+Creped CrepeSheet(const CrepingSettings& s) {
+  Creped c{Pressed().network, {}};
+  c.result = Crepe(c.net, testing::TinySpec().sheet, s, MetricsSettings{}, 7, Progress{});
+  return c;
+}
+
+void ExpectSound(const Creped& c, double mass_before) {
+  const CrepingResult& r = c.result;
+  EXPECT_EQ(r.particles_past_blade, 0u);
+  EXPECT_LT(r.energy_balance_error, 0.05);
+  EXPECT_GT(r.adhesive_broken_fraction, 0.95) << "the sheet must leave the Yankee";
+  EXPECT_GT(r.bonds_broken_fraction, 0.0);
+  EXPECT_LT(r.bonds_broken_fraction, 1.0);
+  EXPECT_EQ(c.net.CheckInvariants(), "");
+  EXPECT_NEAR(c.net.TotalMass(), mass_before, 1e-12 * mass_before) << "anchors removed";
+  for (const Vec3& x : c.net.world.particles.x) ASSERT_TRUE(x.allFinite());
+}
+
+TEST(Creping, StableAtOnceAndTwiceTheYankeeSpeedWithTheImpactEnergyAccounted) {
+  const Creped c = CrepeSheet(Settings());
+  ExpectSound(c, Pressed().network.TotalMass());
+  const CrepingResult& r = c.result;
+  EXPECT_GT(r.crepe_frequency, 0.0);
+  EXPECT_GT(r.crepe_amplitude, 0.0);
+  EXPECT_GT(r.bulk_gain, 1.0) << "a creped sheet is bulkier";
+  // The bond-loss curve starts intact and never heals.
+  const std::vector<double> ff = r.bond_loss.Values("fibre_fibre_broken_fraction");
+  ASSERT_GE(ff.size(), 10u);
+  EXPECT_LT(ff.front(), 0.5 * ff.back());
+  for (std::size_t k = 1; k < ff.size(); ++k) EXPECT_GE(ff[k], ff[k - 1]);
+  EXPECT_NEAR(ff.back(), r.bonds_broken_fraction, 1e-12);
+
+  CrepingSettings fast = Settings();
+  fast.yankee_speed = 60.0;
+  const Creped twice = CrepeSheet(fast);
+  ExpectSound(twice, Pressed().network.TotalMass());
+  EXPECT_GT(twice.result.peak_blade_force, r.peak_blade_force);
+}
+
+TEST(Creping, StrongerAdhesionBreaksMoreBonds) {
+  CrepingSettings weak = Settings(), strong = Settings();
+  weak.adhesion.F_r0 = weak.adhesion.F_s0 = 0.05e-3;
+  strong.adhesion.F_r0 = strong.adhesion.F_s0 = 10e-3;
+  const Creped a = CrepeSheet(weak), b = CrepeSheet(strong);
+  EXPECT_LT(a.result.bonds_broken_fraction, b.result.bonds_broken_fraction);
+  EXPECT_LT(a.result.blade_work, b.result.blade_work);
+}
+
+TEST(CrepeProfile, FindsTheFrequencyAndAmplitudeOfASineProfile) {
+  const double bin = 5e-6, wavelength = 180e-6, amplitude = 20e-6;
+  std::vector<double> h;
+  for (int k = 0; k < 400; ++k)
+    h.push_back(100e-6 + 0.02 * k * bin + amplitude * std::sin(2.0 * kPi * k * bin / wavelength));
+  const CrepeSpectrum s = AnalyseCrepe(h, bin);
+  EXPECT_NEAR(s.frequency, 1.0 / wavelength, 0.02 / wavelength);
+  EXPECT_NEAR(s.amplitude, amplitude, 0.05 * amplitude);
+}
+
+TEST(CrepeProfile, CaliperOfAFlatLayerIsItsThickness) {
+  std::vector<FramePoint> pts;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int layer = 0; layer < 3; ++layer)
+        pts.push_back({Vec3(i * 10e-6 + 5e-6, j * 50e-6 + 25e-6, 16e-6 + layer * 32e-6), 16e-6});
+  const CrepeProfile p = MeasureCrepeProfile(pts, 0.0, 400e-6, 10e-6, 0.0, 500e-6, 50e-6, 1.0);
+  EXPECT_NEAR(p.caliper, 96e-6, 1e-12);
+  ASSERT_EQ(p.height.size(), 40u);
+  for (double h : p.height) EXPECT_NEAR(h, 96e-6, 1e-12);
+}
+
+}  // namespace
+}  // namespace fibrenet::pipeline
