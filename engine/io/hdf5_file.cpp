@@ -1,5 +1,10 @@
 #include "engine/io/hdf5_file.h"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
 #include <fmt/format.h>
 
 #include "engine/core/error.h"
@@ -26,8 +31,14 @@ bool IsHdf5(const std::string& path) {
 
 Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by our exceptions
-  file_ = mode == Mode::kCreate ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)
-                                : H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (mode == Mode::kCreate) {
+    // In memory, grown 1 MiB at a time, no backing store (Save() writes it out).
+    Handle access{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
+    if (access.id >= 0 && H5Pset_fapl_core(access.id, 1 << 20, 0) >= 0)
+      file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.id);
+  } else {
+    file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  }
   if (file_ < 0)
     throw Error(fmt::format("{}: cannot {} HDF5 file", path,
                             mode == Mode::kCreate ? "create" : "open"));
@@ -35,6 +46,25 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
 
 Hdf5File::~Hdf5File() {
   if (file_ >= 0) H5Fclose(file_);
+}
+
+void Hdf5File::Save() {
+  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw Error(fmt::format("{}: cannot flush", path_));
+  const ssize_t size = H5Fget_file_image(file_, nullptr, 0);
+  std::vector<char> image(size > 0 ? static_cast<std::size_t>(size) : 0);
+  if (size <= 0 || H5Fget_file_image(file_, image.data(), image.size()) != size)
+    throw Error(fmt::format("{}: cannot take the file image", path_));
+  std::FILE* out = std::fopen(path_.c_str(), "wb");
+  if (!out) throw Error(fmt::format("{}: cannot create the file: {}", path_, std::strerror(errno)));
+  const bool written = std::fwrite(image.data(), 1, image.size(), out) == image.size();
+  const int write_errno = errno;
+  const bool closed = std::fclose(out) == 0;
+  if (!written || !closed) {
+    const int err = written ? errno : write_errno;
+    std::error_code ignored;
+    std::filesystem::remove(path_, ignored);
+    throw Error(fmt::format("{}: cannot write the file: {}", path_, std::strerror(err)));
+  }
 }
 
 void Hdf5File::CreateGroup(const std::string& name) {

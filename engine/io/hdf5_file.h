@@ -14,11 +14,18 @@ namespace fibrenet::io {
 // True when `path` is a readable HDF5 file.
 bool IsHdf5(const std::string& path);
 
+// A created file is built in memory (HDF5's core driver) and reaches the disk only in Save(),
+// through plain checked writes: a full disk or an unwritable folder is then an exception
+// naming the file and the system's cause, never a half-written file or a failure inside the
+// HDF5 library at exit.
 class Hdf5File {
  public:
   enum class Mode { kCreate, kRead };
   Hdf5File(const std::string& path, Mode mode);
   ~Hdf5File();
+  // Writes a created file to its path. Throws fibrenet::Error; nothing is left at the path
+  // when the write fails.
+  void Save();
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
 

@@ -257,6 +257,7 @@ void WriteSnapshot(const World& w, const std::string& path, const PointFields& f
     f.CreateGroup("xdmf");
     f.WriteInts("xdmf/bonds", intact, 2);
     if (extra) extra(f);
+    f.Save();
   }
   std::error_code ec;
   std::filesystem::rename(partial, path, ec);

@@ -55,6 +55,7 @@ void WriteXdmf(const std::string& h5_path, std::size_t particles, std::size_t bo
       bonds, DataItem(name, "xdmf/bonds", bonds, 2, "Int", 8));
   out << "<Geometry GeometryType=\"XYZ\">" << DataItem(name, "particles/x", particles, 3, "Float", 8)
       << "</Geometry>\n</Grid>\n</Domain>\n</Xdmf>\n";
+  out.close();  // flushes: a full disk shows here
   if (!out) throw Error(fmt::format("{}: write failed", xdmf.string()));
 }
 
