@@ -5,6 +5,8 @@
 #include <SQLiteCpp/Exception.h>
 #include <SQLiteCpp/Statement.h>
 
+#include <cerrno>
+#include <cstring>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -28,14 +30,25 @@ inline std::string message(const std::string& path, std::string_view what,
   return m;
 }
 
+// What the operating system said when a write failed ("No space left on device", "File too
+// large" under a file-size limit, ...), or "" for any other errno. SQLite itself says only
+// "disk I/O error" or "database or disk is full".
+inline std::string storage_cause(int err) {
+  const bool storage = err == ENOSPC || err == EFBIG || err == EDQUOT || err == EROFS || err == EIO;
+  return storage ? std::string(" (") + std::strerror(err) + ")" : std::string();
+}
+
 // Runs `body` and turns any SQLite::Exception into a DbError that names the file and says
-// what was being done. DbErrors thrown by `body` pass through unchanged.
+// what was being done, with the system's cause of a failed write. DbErrors thrown by `body`
+// pass through unchanged.
 template <class Body>
 auto guarded(const std::string& path, std::string_view what, Body&& body) -> decltype(body()) {
+  errno = 0;  // so that a cause found below comes from this operation
   try {
     return std::forward<Body>(body)();
   } catch (const SQLite::Exception& e) {
-    throw DbError(message(path, what, e.what()));
+    const int err = errno;
+    throw DbError(message(path, what, e.what() + storage_cause(err)));
   }
 }
 

@@ -1,18 +1,14 @@
 #!/usr/bin/env bash
 # The campaign and db commands end to end: run, resume (after kill -9), query, export, and the
 # exit codes of bad input. Usage: cli_campaign_test.sh FIBRENET DATA_DIR
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 fibrenet=$1
 data=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-fail() { echo "FAIL: $*" >&2; exit 1; }
-json() { python3 -c "import json,sys; d=json.load(sys.stdin); print($1)"; }
+enter_scratch
 
 # An uninterrupted run, then the same command again: nothing is evaluated the second time.
 # (fast.toml is the campaign without its per-evaluation sleep, which changes no result.)
-sed 's/"analytic.sleep_s" = [0-9.]*/"analytic.sleep_s" = 0.0/' "$data/resume.toml" > fast.toml
+with_sleep 0.0 "$data/resume.toml" > fast.toml
 "$fibrenet" campaign run fast.toml --db full.db --json --quiet > full.json
 [ "$(json 'd["status"]' < full.json)" = done ] || fail "status"
 "$fibrenet" campaign run fast.toml --db full.db --json --quiet > again.json
@@ -39,8 +35,8 @@ total=$(json 'd["campaigns"][0]["counts"]["done"]' < killed.json)
 [ "$(json 'd["replayed"] + d["evaluated"]' < resumed.json)" = "$(json 'd["candidates"]' < full.json)" ] \
   || fail "evaluations lost or repeated"
 # Everything but wall times and reasons must be equal.
-"$fibrenet" db export --db full.db --campaign resume --format csv | cut -d, -f1-6,9- > full.csv
-"$fibrenet" db export --db killed.db --campaign resume --format csv | cut -d, -f1-6,9- > killed.csv
+results full.db resume > full.csv
+results killed.db resume > killed.csv
 diff full.csv killed.csv || fail "resumed results differ from the uninterrupted run"
 
 # Queries.
@@ -53,24 +49,15 @@ id=$(json 'd["best"]["candidate_id"]' < full.json)
 "$fibrenet" db best --db full.db --campaign resume | grep -q "goal <= 2.5: met" || fail "goals shown"
 
 # Bad input: exit code 2 and a message naming the file and key.
-expect_bad() {
-  local want=$1; shift
-  set +e
-  "$@" > out.txt 2> err.txt
-  local rc=$?
-  set -e
-  [ $rc = 2 ] || fail "exit code $rc, expected 2: $*"
-  grep -q -- "$want" err.txt || { cat err.txt; fail "message lacks '$want'"; }
-}
 sed 's/max_evaluations = 30/max_evals = 30/' "$data/resume.toml" > typo.toml
-expect_bad "typo.toml:.*budget.max_evals: unknown key; did you mean 'max_evaluations'?" \
+expect_exit 2 "typo.toml:.*budget.max_evals: unknown key; did you mean 'max_evaluations'?" \
   "$fibrenet" campaign run typo.toml --db typo.db
 [ ! -e typo.db ] || fail "a bad campaign file left a database behind"
-expect_bad "no such file" "$fibrenet" campaign run missing.toml --db x.db
-expect_bad "no such campaign" "$fibrenet" db best --db full.db --campaign nope
-expect_bad "no candidate with id 9999" "$fibrenet" db show 9999 --db full.db
-expect_bad "accepted: csv, json" "$fibrenet" db export --db full.db --campaign resume --format xml
+expect_exit 2 "no such file" "$fibrenet" campaign run missing.toml --db x.db
+expect_exit 2 "no such campaign" "$fibrenet" db best --db full.db --campaign nope
+expect_exit 2 "no candidate with id 9999" "$fibrenet" db show 9999 --db full.db
+expect_exit 2 "accepted: csv, json" "$fibrenet" db export --db full.db --campaign resume --format xml
 sed 's/sum = { max = 2.5 }/sum = { max = 2.4 }/' fast.toml > changed.toml
-expect_bad "started from a different campaign file" \
+expect_exit 2 "started from a different campaign file" \
   "$fibrenet" campaign run changed.toml --db full.db
 echo "cli campaign test passed"

@@ -3,18 +3,14 @@
 # a tight loop during a campaign. Every query must succeed (no "database is locked"), the
 # counts they see never go down, and the campaign ends with the results of a run nobody read.
 # Usage: concurrent_readers_test.sh FIBRENET RESUME_TOML
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 fibrenet=$1
 campaign=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-fail() { echo "FAIL: $*" >&2; exit 1; }
-results() { "$fibrenet" db export --db "$1" --campaign resume --format csv | cut -d, -f1-6,9-; }
+enter_scratch
 
-sed 's/"analytic.sleep_s" = [0-9.]*/"analytic.sleep_s" = 0.05/' "$campaign" > campaign.toml
+with_sleep 0.05 "$campaign" > campaign.toml
 "$fibrenet" campaign run campaign.toml --db quiet.db --quiet > /dev/null
-results quiet.db > quiet.csv
+results quiet.db resume > quiet.csv
 
 "$fibrenet" campaign run campaign.toml --db busy.db --quiet > /dev/null 2> campaign.err &
 pid=$!
@@ -31,6 +27,6 @@ while kill -0 "$pid" 2> /dev/null; do
 done
 wait "$pid" || { cat campaign.err; fail "the campaign failed while being read"; }
 [ "$queries" -ge 5 ] || fail "only $queries rounds of queries ran during the campaign"
-results busy.db > busy.csv
+results busy.db resume > busy.csv
 diff quiet.csv busy.csv > /dev/null || fail "results differ from the unread run"
 echo "concurrent readers test passed ($queries rounds of queries, last count $last)"

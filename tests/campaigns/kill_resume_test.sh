@@ -3,20 +3,15 @@
 # passes PRAGMA integrity_check, and the stored results equal those of an uninterrupted run
 # (no candidate lost or duplicated). The kill moments come from a fixed seed, so a failure
 # can be repeated. Usage: kill_resume_test.sh FIBRENET RESUME_TOML
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 fibrenet=$1
 campaign=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-fail() { echo "FAIL: $*" >&2; exit 1; }
-# Everything but wall times and reasons (columns 7 and 8) must be equal.
-results() { "$fibrenet" db export --db "$1" --campaign resume --format csv | cut -d, -f1-6,9-; }
+enter_scratch
 
 # 0.05 s per evaluation: a full run takes about 2 s, so the kills land all over it.
-sed 's/"analytic.sleep_s" = [0-9.]*/"analytic.sleep_s" = 0.05/' "$campaign" > campaign.toml
+with_sleep 0.05 "$campaign" > campaign.toml
 "$fibrenet" campaign run campaign.toml --db full.db --quiet > /dev/null
-results full.db > full.csv
+results full.db resume > full.csv
 rows=$(wc -l < full.csv)
 [ "$rows" -gt 20 ] || fail "the uninterrupted run stored only $rows rows"
 
@@ -35,8 +30,8 @@ for trial in $(seq 1 10); do
   "$fibrenet" campaign run campaign.toml --db "$db" --json --quiet > resumed.json \
     || fail "trial $trial: the resume did not complete"
   [ "$(sqlite3 "$db" 'PRAGMA integrity_check;')" = ok ] || fail "trial $trial: integrity_check"
-  results "$db" > trial.csv
+  results "$db" resume > trial.csv
   diff full.csv trial.csv > /dev/null || { diff full.csv trial.csv | head; fail "trial $trial: results differ"; }
-  echo "trial $trial: $(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(d["replayed"], "replayed,", d["evaluated"], "evaluated")' resumed.json) on resume"
+  echo "trial $trial: $(json 'd["replayed"], "replayed,", d["evaluated"], "evaluated"' < resumed.json) on resume"
 done
 echo "kill and resume test passed"

@@ -1,15 +1,12 @@
 #!/usr/bin/env bash
 # `fibrenet report` writes the three PNG plots of a campaign. Skipped (77) without matplotlib.
 # Usage: report_test.sh FIBRENET CAMPAIGN.toml
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 fibrenet=$1
 campaign=$2
 python3 -c "import matplotlib" 2>/dev/null || /usr/bin/python3 -c "import matplotlib" 2>/dev/null \
   || { echo "matplotlib missing: skipped"; exit 77; }
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-fail() { echo "FAIL: $*" >&2; exit 1; }
+enter_scratch
 "$fibrenet" campaign run "$campaign" --db r.db --quiet > /dev/null
 "$fibrenet" report --db r.db --out plots > files.txt
 for kind in objective softness_strength variables_vs_metrics; do
@@ -17,9 +14,5 @@ for kind in objective softness_strength variables_vs_metrics; do
   [ -s "$f" ] || fail "$f missing"
   head -c 8 "$f" | od -An -c | grep -q "P   N   G" || fail "$f is not a PNG"
 done
-set +e
-"$fibrenet" report --db r.db --out plots --campaign nope 2> err.txt
-rc=$?
-set -e
-[ $rc = 2 ] || fail "unknown campaign: exit code $rc"
+expect_exit 2 "" "$fibrenet" report --db r.db --out plots --campaign nope
 echo "report test passed"

@@ -3,13 +3,10 @@
 # coloured by the fibres' strain energy at the tensile peak; `fibrenet run --from` continues
 # from a snapshot and ends where the uninterrupted run ended; snapshots that do not fit the
 # scene are refused with exit code 2. Usage: run_snapshots_test.sh FIBRENET TINY_SCENE
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 fibrenet=$1
 scene=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-fail() { echo "FAIL: $*" >&2; exit 1; }
+enter_scratch
 
 # The tiny scene with a short MD tensile test after pressing.
 cp "$scene" scene.toml
@@ -41,20 +38,10 @@ import re, sys
 text = open(sys.argv[1]).read()
 print(re.sub(r"\[pressing\].*?(?=\[tensile\])", "", text, flags=re.S))
 PY
-set +e
-"$fibrenet" run unpressed.toml --from full/snapshots/pressing.h5 > out.txt 2> err.txt
-rc=$?
-set -e
-[ $rc = 2 ] || fail "exit code $rc for a snapshot that does not fit the scene, expected 2"
-grep -q "full/snapshots/pressing.h5: holds the network after pressing" err.txt \
-  || { cat err.txt; fail "message does not name the snapshot and the stage"; }
+expect_exit 2 "full/snapshots/pressing.h5: holds the network after pressing" \
+  "$fibrenet" run unpressed.toml --from full/snapshots/pressing.h5
 
 # A file that is not a snapshot.
 echo "not hdf5" > bogus.h5
-set +e
-"$fibrenet" run scene.toml --from bogus.h5 > out.txt 2> err.txt
-rc=$?
-set -e
-[ $rc = 2 ] || fail "exit code $rc for a file that is not a snapshot, expected 2"
-grep -q "bogus.h5: not an HDF5 file" err.txt || { cat err.txt; fail "message for a non-HDF5 file"; }
+expect_exit 2 "bogus.h5: not an HDF5 file" "$fibrenet" run scene.toml --from bogus.h5
 echo "run snapshots test passed"
