@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "engine/core/error.h"
@@ -120,6 +121,13 @@ std::int64_t CampaignTable::IntegerAtLeast(std::string_view key, std::int64_t fa
   const std::int64_t v = Integer(key).value_or(fallback);
   if (v < min) Fail(key, fmt::format("must be an integer >= {}; got {}", min, v));
   return v;
+}
+
+int CampaignTable::CountAtLeast(std::string_view key, int fallback, int min) {
+  const std::int64_t v = IntegerAtLeast(key, fallback, min);
+  constexpr std::int64_t kMax = std::numeric_limits<int>::max();
+  if (v > kMax) Fail(key, fmt::format("must be an integer <= {}; got {}", kMax, v));
+  return static_cast<int>(v);
 }
 
 void CampaignTable::Accept(std::initializer_list<std::string_view> keys) {

@@ -47,6 +47,8 @@ class CampaignTable {
   // Bounds checks with the standard message.
   double NumberAtLeast(std::string_view key, double fallback, double min, bool inclusive);
   std::int64_t IntegerAtLeast(std::string_view key, std::int64_t fallback, std::int64_t min);
+  // The same for a count held in an int: above INT_MAX an InputError, not a wrapped value.
+  int CountAtLeast(std::string_view key, int fallback, int min);
 
   // Declares the keys accepted here and rejects any other at once, so that a misspelt key is
   // reported as such rather than as a missing required key.
