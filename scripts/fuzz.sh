@@ -12,17 +12,8 @@ cd "$(dirname "$0")/.."
 
 # clang, and its runtime libraries (libFuzzer, the sanitizers), which clang only recommends.
 packages=(clang libclang-rt-dev)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  sudo_cmd=""
-  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-  export DEBIAN_FRONTEND=noninteractive
-  $sudo_cmd apt-get update -q
-  $sudo_cmd apt-get install -y -q --no-install-recommends "${missing[@]}"
-fi
+source scripts/install_packages.sh
+install_packages "${packages[@]}"
 
 seconds="${FIBRENET_FUZZ_SECONDS:-60}"
 jobs="${FIBRENET_JOBS:-$(nproc)}"
