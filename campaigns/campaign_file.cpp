@@ -216,7 +216,7 @@ void ReadAlgorithm(CampaignTable& top, CampaignSpec& spec) {
                                        "range); got {}",
                                        a.initial_step));
   }
-  a.population = r.CountAtLeast("population", 0, 0);
+  a.population = r.Count("population", 0, 0, kMaxPopulation);
   a.seed =
       static_cast<std::uint64_t>(r.IntegerAtLeast("seed", static_cast<std::int64_t>(spec.seed), 0));
   r.Finish();
@@ -236,7 +236,7 @@ void ReadBudget(CampaignTable& top, CampaignSpec& spec) {
   toml::table empty;
   CampaignTable r(table ? *table : empty, top.file(), "budget");
   r.Accept({"max_evaluations", "max_wall_s", "xtol_rel", "ftol_rel", "ftol_abs"});
-  spec.stop.max_evaluations = r.CountAtLeast("max_evaluations", 100, 1);
+  spec.stop.max_evaluations = r.Count("max_evaluations", 100, 1, kMaxEvaluations);
   spec.max_wall_s = r.Has("max_wall_s") ? r.NumberAtLeast("max_wall_s", 0.0, 0.0, false) : 0.0;
   spec.stop.xtol_rel = r.NumberAtLeast("xtol_rel", 1e-4, 0.0, true);
   spec.stop.ftol_rel = r.NumberAtLeast("ftol_rel", 1e-6, 0.0, true);
@@ -286,11 +286,11 @@ void ReadFidelities(CampaignTable& top, CampaignSpec& spec, int replicates) {
     f.name = r.RequireString("name", "a unique name such as \"coarse\"");
     if (f.name.empty()) r.Fail("name", "must not be empty");
     if (!names.insert(f.name).second) r.Fail("name", "'" + f.name + "' is used twice");
-    f.replicates = r.CountAtLeast("replicates", replicates, 1);
+    f.replicates = r.Count("replicates", replicates, 1, kMaxReplicates);
     if (r.Has("top") && i == 0) {
       r.Fail("top", "the first level explores; top applies to later (confirming) levels");
     }
-    f.top = r.CountAtLeast("top", 1, 1);
+    f.top = r.Count("top", 1, 1, kMaxEvaluations);
     if (const toml::table* overrides = r.Table("overrides")) {
       FlattenOverrides(*overrides, "", top.file(), path + ".overrides", f.overrides);
     }
@@ -320,7 +320,7 @@ void ReadDoe(CampaignTable& top, CampaignSpec& spec) {
     r.Fail("method", fmt::format("unknown method '{}'{}; accepted: {}", method,
                                  optimizer::DidYouMean(method, methods), fmt::join(methods, ", ")));
   }
-  doe.points = r.CountAtLeast("points", 16, 1);
+  doe.points = r.Count("points", 16, 1, kMaxEvaluations);
   doe.seed =
       static_cast<std::uint64_t>(r.IntegerAtLeast("seed", static_cast<std::int64_t>(spec.seed), 0));
   r.Finish();
@@ -391,7 +391,7 @@ CampaignSpec ParseCampaign(std::string_view text, const std::string& source,
   if (spec.name.empty()) top.Fail("name", "must not be empty");
   spec.base_scene = ResolveScene(top, base_dir, mode);
   spec.seed = static_cast<std::uint64_t>(top.IntegerAtLeast("seed", 1, 0));
-  const int replicates = top.CountAtLeast("replicates", 1, 1);
+  const int replicates = top.Count("replicates", 1, 1, kMaxReplicates);
   spec.space = ReadVariables(top);
   ReadGoals(top, spec);
   ReadAlgorithm(top, spec);

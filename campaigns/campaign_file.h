@@ -21,6 +21,14 @@ namespace fibrenet::campaigns {
 // not files.
 inline constexpr std::string_view kAnalyticPrefix = "analytic:";
 
+// Largest counts a campaign file may ask for: far beyond any practical campaign (each
+// evaluation is a pipeline run and a database row), small enough that the sweep's points,
+// the seeds and NLopt's population fit in memory. max_evaluations, doe.points and top share
+// the first.
+inline constexpr int kMaxEvaluations = 1'000'000;
+inline constexpr int kMaxReplicates = 1000;
+inline constexpr int kMaxPopulation = 100'000;
+
 struct CampaignSpec {
   std::string path;        // the file as given ("" when parsed from text)
   std::string text;        // its content, stored in the results database

@@ -123,10 +123,9 @@ std::int64_t CampaignTable::IntegerAtLeast(std::string_view key, std::int64_t fa
   return v;
 }
 
-int CampaignTable::CountAtLeast(std::string_view key, int fallback, int min) {
+int CampaignTable::Count(std::string_view key, int fallback, int min, int max) {
   const std::int64_t v = IntegerAtLeast(key, fallback, min);
-  constexpr std::int64_t kMax = std::numeric_limits<int>::max();
-  if (v > kMax) Fail(key, fmt::format("must be an integer <= {}; got {}", kMax, v));
+  if (v > max) Fail(key, fmt::format("must be an integer <= {}; got {}", max, v));
   return static_cast<int>(v);
 }
 

@@ -47,8 +47,9 @@ class CampaignTable {
   // Bounds checks with the standard message.
   double NumberAtLeast(std::string_view key, double fallback, double min, bool inclusive);
   std::int64_t IntegerAtLeast(std::string_view key, std::int64_t fallback, std::int64_t min);
-  // The same for a count held in an int: above INT_MAX an InputError, not a wrapped value.
-  int CountAtLeast(std::string_view key, int fallback, int min);
+  // A count in [min, max]: a count beyond what a campaign can hold (or an int) is an
+  // InputError, not a wrapped value or an allocation failure.
+  int Count(std::string_view key, int fallback, int min, int max);
 
   // Declares the keys accepted here and rejects any other at once, so that a misspelt key is
   // reported as such rather than as a missing required key.

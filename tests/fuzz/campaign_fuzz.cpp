@@ -29,16 +29,20 @@ using fibrenet::campaigns::ParseMode;
 const std::string kScenesDir = FIBRENET_SCENES_DIR;
 const std::string kSource = "fuzz.toml";
 
-// An accepted campaign must hold what docs/campaigns.md promises of its counts; a count below
-// its minimum means the reader misread a value (e.g. one wrapped into an int) instead of
+// An accepted campaign must hold what docs/campaigns.md promises of its counts; a count outside
+// its range means the reader misread a value (e.g. one wrapped into an int) instead of
 // refusing it.
 void CheckAccepted(const CampaignSpec& spec) {
-  bool ok = spec.stop.max_evaluations >= 1 && !spec.fidelities.empty();
-  for (const auto& f : spec.fidelities) ok = ok && f.replicates >= 1 && f.top >= 1;
-  if (spec.algorithm) ok = ok && spec.algorithm->population >= 0;
-  if (spec.doe) ok = ok && spec.doe->points >= 1;
+  using fibrenet::campaigns::kMaxEvaluations, fibrenet::campaigns::kMaxReplicates,
+      fibrenet::campaigns::kMaxPopulation;
+  auto within = [](int v, int lo, int hi) { return v >= lo && v <= hi; };
+  bool ok = within(spec.stop.max_evaluations, 1, kMaxEvaluations) && !spec.fidelities.empty();
+  for (const auto& f : spec.fidelities)
+    ok = ok && within(f.replicates, 1, kMaxReplicates) && within(f.top, 1, kMaxEvaluations);
+  if (spec.algorithm) ok = ok && within(spec.algorithm->population, 0, kMaxPopulation);
+  if (spec.doe) ok = ok && within(spec.doe->points, 1, kMaxEvaluations);
   if (ok) return;
-  std::fprintf(stderr, "campaign_fuzz: an accepted campaign holds a count below its minimum\n");
+  std::fprintf(stderr, "campaign_fuzz: an accepted campaign holds a count outside its range\n");
   std::abort();
 }
 
