@@ -45,7 +45,8 @@ std::string DescribeLargestInteraction(const World& w, std::size_t particle) {
   for (std::size_t k = 0; k < w.walls.size(); ++k) {
     const double gap = (p.x[particle].z() - w.walls[k].z) * w.walls[k].side;
     if (gap >= p.radius[particle]) continue;
-    const double f = EvaluateVanWyk(2.0 * gap, 2.0 * p.radius[particle], w.contact.normal).force;
+    const double f =
+        EvaluateVanWyk(2.0 * gap, 2.0 * p.radius[particle], w.contact.ForSurface().normal).force;
     consider(f, fmt::format("wall {} at z = {:.4g} m: gap {:.3g} m, |F_n| = {:.3g} N", k,
                             w.walls[k].z, gap, f));
   }

@@ -50,11 +50,12 @@ EnergyReport MeasureEnergy(const World& w) {
   // A surface pushes with F(2 gap) of the mirror-image pair, so the potential of that force
   // over the gap is half the pair's energy (which is the integral over 2 gap); its hard core
   // adds a linear spring.
+  const ContactParams surface_law = w.contact.ForSurface();
   auto surface_energy = [&](std::size_t i, double gap, bool friction,
                             const std::vector<Vec3>& history, double hard_stiffness,
                             double hard_gap) {
     if (gap >= p.radius[i] || p.inv_mass[i] == 0.0) return;
-    const NormalResult nr = EvaluateVanWyk(2.0 * gap, 2.0 * p.radius[i], w.contact.normal);
+    const NormalResult nr = EvaluateVanWyk(2.0 * gap, 2.0 * p.radius[i], surface_law.normal);
     r.strain.contacts += 0.5 * nr.energy;
     if (w.physics.friction && friction && i < history.size())
       r.strain.contacts += 0.5 * w.contact.tangential_ratio * nr.stiffness * history[i].squaredNorm();

@@ -112,14 +112,14 @@ struct SurfaceResult {
   Vec3 torque;
   double damping_power, slip_loss;
 };
-SurfaceResult SurfaceContact(const World& w, std::int64_t i, const Vec3& normal, double gap,
-                             const Vec3& surface_velocity, Vec3& history, bool friction,
-                             double hard_stiffness, double hard_gap) {
+SurfaceResult SurfaceContact(const World& w, const ContactParams& law, std::int64_t i,
+                             const Vec3& normal, double gap, const Vec3& surface_velocity,
+                             Vec3& history, bool friction, double hard_stiffness, double hard_gap) {
   const Particles& p = w.particles;
   const double dist = std::max(2.0 * gap, 1e-3 * p.radius[i]);
   const ContactGeometry g{-dist * normal, dist, p.radius[i], p.radius[i], p.mass[i],
                           surface_velocity - p.v[i], p.omega[i], Vec3::Zero()};
-  const ContactResult r = EvaluateContact(g, w.contact, history, w.settings.dt, friction);
+  const ContactResult r = EvaluateContact(g, law, history, w.settings.dt, friction);
   SurfaceResult out{r.force_j, r.torque_i, r.damping_power, r.slip_loss};
   const double core = hard_gap * p.radius[i] - gap;
   if (core > 0.0 && hard_stiffness > 0.0) out.on_surface -= hard_stiffness * core * normal;
@@ -136,6 +136,7 @@ void AccumulateWallForces(World& w, StepLosses& losses) {
   Particles& p = w.particles;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
   const double dt = w.settings.dt;
+  const ContactParams law = w.contact.ForSurface();
   for (Wall& wall : w.walls) {
     if (wall.history.size() != p.size()) wall.history.assign(p.size(), Vec3::Zero());
     const bool friction = w.physics.friction && wall.friction;
@@ -154,7 +155,7 @@ void AccumulateWallForces(World& w, StepLosses& losses) {
         ClearHistory(wall.history[i]);
         continue;
       }
-      const SurfaceResult r = SurfaceContact(w, i, normal, gap, wall_velocity, wall.history[i],
+      const SurfaceResult r = SurfaceContact(w, law, i, normal, gap, wall_velocity, wall.history[i],
                                              friction, wall.hard_stiffness, wall.hard_gap);
       p.force[i] -= r.on_surface;
       p.torque[i] += r.torque;
@@ -178,6 +179,7 @@ void AccumulateBladeForces(World& w, StepLosses& losses) {
   Particles& p = w.particles;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
   const double dt = w.settings.dt;
+  const ContactParams law = w.contact.ForSurface();
   for (Blade& blade : w.blades) {
     if (blade.history.size() != p.size()) blade.history.assign(p.size(), Vec3::Zero());
     const bool friction = w.physics.friction && blade.friction;
@@ -190,7 +192,7 @@ void AccumulateBladeForces(World& w, StepLosses& losses) {
         ClearHistory(blade.history[i]);
         continue;
       }
-      const SurfaceResult r = SurfaceContact(w, i, t.normal, t.gap, blade.velocity, blade.history[i],
+      const SurfaceResult r = SurfaceContact(w, law, i, t.normal, t.gap, blade.velocity, blade.history[i],
                                              friction, blade.hard_stiffness, blade.hard_gap);
       p.force[i] -= r.on_surface;
       p.torque[i] += r.torque;

@@ -41,13 +41,18 @@ TimeStepInfo CriticalTimeStep(const World& w) {
     const VanWykParams& vw = w.contact.normal;
     double r_min = p.size() ? *std::min_element(p.radius.begin(), p.radius.end()) : 1.0;
     const double d_lin = vw.linear_below * 2.0 * r_min;
-    k_contact = vw.C * vw.g * std::pow(1.0 / vw.linear_below, vw.g) / d_lin;
+    k_contact = vw.C * vw.g * std::pow(1.0 / vw.linear_below, vw.g) / d_lin + vw.hard_stiffness;
     if (w.physics.friction) k_contact *= (1.0 + w.contact.tangential_ratio);
   }
+  // Hard cores of rigid surfaces, as if a particle touched them all at once.
+  double k_surfaces = 0.0;
+  for (const Wall& wall : w.walls) k_surfaces += wall.hard_stiffness;
+  for (const Blade& blade : w.blades) k_surfaces += blade.hard_stiffness;
   TimeStepInfo info;
   double omega2_max = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double contacts = k_contact * w.settings.contacts_per_particle_bound * 2.0 / p.mass[i];
+    const double contacts =
+        (k_contact * w.settings.contacts_per_particle_bound * 2.0 + k_surfaces) / p.mass[i];
     const double contact_rot = contacts * p.mass[i] * p.radius[i] * p.radius[i] / p.inertia[i];
     const double t = trans[i] + contacts, r = rot[i] + contact_rot;
     if (t > omega2_max) {

@@ -11,6 +11,8 @@ std::string VanWykParams::Validate() const {
   if (!(std::isfinite(g) && g > 1.0)) return fmt::format("g = {}: must be finite and > 1", g);
   if (!(linear_below > 0.0 && linear_below < 1.0))
     return fmt::format("linear_below = {}: must be in (0, 1)", linear_below);
+  if (!(std::isfinite(hard_stiffness) && hard_stiffness >= 0.0))
+    return fmt::format("hard_stiffness = {} N/m: must be finite and >= 0", hard_stiffness);
   return {};
 }
 

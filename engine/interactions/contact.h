@@ -34,6 +34,13 @@ struct ContactParams {
   // Sets zeta so that a gentle head-on impact rebounds with `restitution` (see above).
   void Derive();
   std::string Validate() const;
+  // The law of a particle against a rigid surface (mirror image): the surface carries its own
+  // hard core (walls.h, blade.h), so the particle-particle hard core is left out.
+  ContactParams ForSurface() const {
+    ContactParams s = *this;
+    s.normal.hard_stiffness = 0.0;
+    return s;
+  }
 };
 
 // Restitution coefficient of a linear spring-dashpot contact whose total force may not

@@ -3,7 +3,10 @@
 // with C = 0.00026 N and g = 3.45 fitted to single-fibre transverse collapse (paper 2.4).
 // F stiffens without bound as d -> 0. Below d_lin = linear_below * (R_i + R_j) the law
 // continues on its tangent line (the documented stiff branch), which bounds the contact
-// stiffness and so the critical time step; the smallest d reached is reported.
+// stiffness and so the critical time step; the smallest d reached is reported. An optional
+// hard core adds a linear spring of stiffness hard_stiffness below d_lin: the collapsed
+// fibre wall (transverse modulus times a particle's length along the fibre), which keeps
+// cross-sections from passing through each other under impact loads (creping).
 // Units: C in N, distances in m, energy in J.
 #pragma once
 
@@ -16,6 +19,7 @@ struct VanWykParams {
   double C = 0.00026;         // [N]
   double g = 3.45;            // exponent [-]
   double linear_below = 0.5;  // d_lin / (R_i + R_j), in (0, 1)
+  double hard_stiffness = 0.0;  // hard core below d_lin [N/m], >= 0; 0 = off
 
   std::string Validate() const;
 };
@@ -38,8 +42,10 @@ inline NormalResult EvaluateVanWyk(double d, double sum_radii, const VanWykParam
   r.energy = p.C * ((ratio_g * d_eval - sum_radii) / (p.g - 1.0) - (sum_radii - d_eval));
   if (d < d_lin) {
     const double x = d_lin - d;
-    r.energy += r.force * x + 0.5 * r.stiffness * x * x;
-    r.force += r.stiffness * x;
+    const double k = r.stiffness + p.hard_stiffness;
+    r.energy += r.force * x + 0.5 * k * x * x;
+    r.force += k * x;
+    r.stiffness = k;
   }
   return r;
 }

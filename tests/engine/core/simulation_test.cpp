@@ -213,6 +213,32 @@ TEST(TimeStep, AStepWithinTheLimitIsKeptAndZeroChoosesOne) {
   EXPECT_DOUBLE_EQ(automatic.settings.dt, automatic.settings.safety * dt_crit);
 }
 
+TEST(TimeStep, HardCoresOfContactsAndSurfacesShortenTheStep) {
+  World w;
+  w.cell.hi = Vec3(1e-3, 1e-3, 1e-3);
+  w.particles.Add(Vec3(5e-4, 5e-4, 5e-4), 16e-6, 8e-12, -1);
+  w.physics.contacts = true;
+  w.physics.friction = false;
+  const double soft = CriticalTimeStep(w).dt_crit;
+  // A lone sphere: omega^2 = (2 bound k_contact + k_surfaces) / m, times m R^2 / I = 2.5 for
+  // the contacts' rotational stiffness, which limits; the cores add to the stiffnesses.
+  const VanWykParams& vw = w.contact.normal;
+  const double k_cap = vw.C * vw.g * std::pow(1.0 / vw.linear_below, vw.g) / (vw.linear_below * 32e-6);
+  const double bound2 = 2.0 * w.settings.contacts_per_particle_bound;
+  auto expected = [&](double k_contact, double k_surfaces) {
+    return 2.0 / std::sqrt(2.5 * (bound2 * k_contact + k_surfaces) / 8e-12);
+  };
+  EXPECT_NEAR(soft, expected(k_cap, 0.0), 1e-12 * soft);
+  w.contact.normal.hard_stiffness = 1.5e4;
+  const double hard = CriticalTimeStep(w).dt_crit;
+  EXPECT_NEAR(hard, expected(k_cap + 1.5e4, 0.0), 1e-12 * hard);
+  Wall wall;
+  wall.hard_stiffness = 3e4;
+  w.walls.push_back(wall);
+  const double with_wall = CriticalTimeStep(w).dt_crit;
+  EXPECT_NEAR(with_wall, expected(k_cap + 1.5e4, 3e4), 1e-12 * with_wall);
+}
+
 void ExpectRunErrorNaming(Simulation& sim, std::int64_t step, std::size_t particle) {
   try {
     sim.Run(10);

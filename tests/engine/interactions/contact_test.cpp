@@ -83,6 +83,33 @@ TEST(VanWyk, ForceIsMinusTheEnergyDerivative) {
   }
 }
 
+TEST(VanWyk, HardCoreAddsALinearSpringBelowTheStiffBranchOnly) {
+  VanWykParams hard;
+  hard.hard_stiffness = 1.5e4;
+  const VanWykParams soft;
+  const double d_lin = soft.linear_below * kSum;
+  for (double ratio : {0.99, 0.7, 0.5}) {  // above d_lin and at it: unchanged
+    const NormalResult a = EvaluateVanWyk(ratio * kSum, kSum, hard);
+    const NormalResult b = EvaluateVanWyk(ratio * kSum, kSum, soft);
+    EXPECT_EQ(a.force, b.force) << ratio;
+    EXPECT_EQ(a.energy, b.energy) << ratio;
+  }
+  for (double ratio : {0.45, 0.3, 0.1}) {
+    const double d = ratio * kSum, x = d_lin - d;
+    const NormalResult a = EvaluateVanWyk(d, kSum, hard);
+    const NormalResult b = EvaluateVanWyk(d, kSum, soft);
+    EXPECT_NEAR(a.force - b.force, 1.5e4 * x, 1e-9 * a.force) << ratio;
+    EXPECT_NEAR(a.energy - b.energy, 0.5 * 1.5e4 * x * x, 1e-9 * a.energy) << ratio;
+    EXPECT_NEAR(a.stiffness - b.stiffness, 1.5e4, 1e-9 * a.stiffness) << ratio;
+    // Still conservative: force = -dE/dd.
+    const double h = 1e-6 * kSum;
+    const double fd = (EvaluateVanWyk(d - h, kSum, hard).energy - EvaluateVanWyk(d + h, kSum, hard).energy) / (2 * h);
+    EXPECT_NEAR(fd, a.force, 1e-6 * a.force) << ratio;
+  }
+  hard.hard_stiffness = -1.0;
+  EXPECT_NE(hard.Validate(), "");
+}
+
 TEST(Contact, NewtonsThirdLawAndAngularMomentumWithFriction) {
   std::mt19937 rng(1);
   const ContactParams p = Defaults(0.7);
