@@ -252,6 +252,14 @@ pipeline::CrepingSettings ReadCreping(TableReader& r, ReadContext& ctx) {
   c.takeaway_time = r.Number("takeaway_time_us", 2, OpenClosed(0, 1e6), "us") * 1e-6;
   c.tip_clearance = r.Number("tip_clearance_um", 0, Closed(0, 1000), "um") * 1e-6;
   c.blade_hard_stiffness = r.Number("blade_hard_stiffness_N_per_m", 3e4, Closed(0, 1e9), "N/m");
+  c.fibre_hard_stiffness = r.Number("fibre_hard_stiffness_N_per_m", 1.5e4, Closed(0, 1e9), "N/m");
+  c.relax_mass_scale = r.Number("relax_mass_scale", 1000, Closed(1, 1e8), "");
+  c.relax_damping_time = r.Number("relax_damping_time_us", 10, OpenClosed(0, 1e6), "us") * 1e-6;
+  c.relax_bond_damping_ratio = r.Number("relax_bond_damping_ratio", 0.5, Closed(0, 1), "of critical");
+  c.relax_kinetic_ratio = r.Number("relax_kinetic_ratio", 1e-3, Open(0, 1), "");
+  c.relax_energy_tolerance = r.Number("relax_energy_tolerance", 0.01, Open(0, 1), "");
+  c.relax_max_steps = r.Integer("relax_max_steps", 50'000, 0, 10'000'000'000LL);
+  c.end_zone_fraction = r.Number("end_zone_fraction", 0.2, Closed(0, 0.45), "of the strip length");
   c.curve_samples = static_cast<int>(r.Integer("curve_samples", 200, 2, 100000));
   c.impact_frames = static_cast<int>(r.Integer("impact_frames", 0, 0, 1000));
   c.max_steps = r.Integer("max_steps", 20'000'000, 1, 10'000'000'000LL);

@@ -5,18 +5,11 @@
 #include <complex>
 #include <limits>
 
+#include "engine/pipeline/percentile.h"
+
 namespace fibrenet::pipeline {
 
 namespace {
-
-double Percentile(std::vector<double> v, double percent) {
-  if (v.empty()) return 0.0;
-  const std::size_t k = static_cast<std::size_t>(
-      std::clamp(percent / 100.0 * static_cast<double>(v.size() - 1), 0.0,
-                 static_cast<double>(v.size() - 1)));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
 
 // Fills NaN entries from the nearest filled entry before them (or after, at the start).
 void FillGaps(std::vector<double>& v) {
@@ -68,7 +61,7 @@ CrepeProfile MeasureCrepeProfile(const std::vector<FramePoint>& points, double u
   }
   FillGaps(out.height);
   if (!tops.empty())
-    out.caliper = Percentile(tops, 100.0 - percentile) - Percentile(bottoms, percentile);
+    out.caliper = Percentile(tops, 1.0 - percentile / 100.0) - Percentile(bottoms, percentile / 100.0);
   return out;
 }
 

@@ -93,6 +93,66 @@ void DropAnchors(World& w, std::size_t n, std::size_t bonds, std::size_t types) 
   });
 }
 
+// The creped sheet, free of blade and coating, comes to rest on the floor (dynamic relaxation
+// with scaled masses and background drag, as the pressing's springback).
+void RelaxCrepedSheet(Network& net, const SheetSpec& sheet, const CrepingSettings& s,
+                      const Progress& progress, CrepingResult& out) {
+  World& w = net.world;
+  const double strain = MeasureEnergy(w).strain.Total();
+  out.relaxed = !(strain > 0.0);  // nothing stored, nothing to release
+  if (s.relax_max_steps == 0 || out.relaxed) return;
+  const SavedMasses masses = ScaleMasses(w, s.relax_mass_scale);
+  // The drag acts on translation only: bond dashpots take out the particles' rotational
+  // ringing, which would otherwise trade energy with the bonds for ever.
+  const std::vector<BeamBondParams> bond_types = w.bonds.types;
+  AddBondDamping(w, s.relax_bond_damping_ratio);
+  w.physics.drag = true;
+  w.physics.drag_coefficient = net.TotalMass() / double(w.particles.size()) / s.relax_damping_time;
+  w.settings.dt = 0.0;
+  w.settings.safety = sheet.time_step_safety;
+  w.neighbours.Invalidate();
+  Simulation sim(w);
+  if (std::string warning = sim.Prepare(); !warning.empty()) out.warnings.push_back(warning);
+  // At rest: the kinetic energy is a small fraction of the strain energy, or the strain
+  // energy has stopped changing (within relax_energy_tolerance over 50 damping times): the
+  // folds that friction holds may keep creeping without ever quite stopping.
+  const double t0 = w.time, window = 50.0 * s.relax_damping_time;
+  double kinetic = 0.0, energy = strain, window_start = t0, window_energy = strain, change = 1.0;
+  auto at_rest = [&] {
+    kinetic = KineticEnergy(w);
+    if (w.time - window_start >= window) {
+      energy = MeasureEnergy(w).strain.Total();
+      change = std::abs(energy - window_energy) / std::max(window_energy, 1e-300);
+      window_start = w.time;
+      window_energy = energy;
+      if (change < s.relax_energy_tolerance) return true;
+    }
+    return w.time - t0 >= 5.0 * s.relax_damping_time && kinetic < s.relax_kinetic_ratio * energy;
+  };
+  auto status = [&] {
+    return fmt::format("creping: the creped sheet relaxes, kinetic / strain energy {:.3g} "
+                       "(at rest below {:.3g}), strain energy change {:.3g} over the last "
+                       "window (at rest below {:.3g})",
+                       kinetic / energy, s.relax_kinetic_ratio, change, s.relax_energy_tolerance);
+  };
+  const std::int64_t chunk = std::clamp<std::int64_t>(
+      static_cast<std::int64_t>(0.5 * s.relax_damping_time / w.settings.dt), 10, 2000);
+  out.relax_steps = RunUntil(sim, s.relax_max_steps, chunk, at_rest, status, progress);
+  out.relaxed = change < s.relax_energy_tolerance || kinetic < s.relax_kinetic_ratio * energy;
+  if (!out.relaxed)
+    out.warnings.push_back(fmt::format(
+        "creping: the creped sheet did not come to rest in {} steps (kinetic / strain energy "
+        "{:.3g}, strain energy change {:.3g} over the last {:.3g} s); raise "
+        "creping.relax_max_steps", out.relax_steps, kinetic / energy, change, window));
+  RestoreMasses(w, masses);
+  w.bonds.types = bond_types;
+  w.physics.drag = false;
+  for (std::size_t i = 0; i < w.particles.size(); ++i) {
+    w.particles.v[i].setZero();
+    w.particles.omega[i].setZero();
+  }
+}
+
 }  // namespace
 
 std::string AdhesionSettings::Validate() const {
@@ -130,8 +190,23 @@ std::string CrepingSettings::Validate() const {
   if (impact_frames < 0 || impact_frames > 1000)
     return fmt::format("impact_frames = {}: must lie in [0, 1000]", impact_frames);
   if (max_steps < 1) return fmt::format("max_steps = {}: must be >= 1", max_steps);
+  if (!(relax_mass_scale >= 1.0 && relax_mass_scale <= 1e8))
+    return fmt::format("relax_mass_scale = {}: must lie in [1, 1e8]", relax_mass_scale);
+  if (!(relax_damping_time > 0.0 && relax_damping_time <= 1.0))
+    return fmt::format("relax_damping_time = {} s: must lie in (0, 1]", relax_damping_time);
+  if (!(relax_kinetic_ratio > 0.0 && relax_kinetic_ratio < 1.0))
+    return fmt::format("relax_kinetic_ratio = {}: must lie in (0, 1)", relax_kinetic_ratio);
+  if (!(end_zone_fraction >= 0.0 && end_zone_fraction <= 0.45))
+    return fmt::format("end_zone_fraction = {}: must lie in [0, 0.45]", end_zone_fraction);
+  if (!(relax_bond_damping_ratio >= 0.0 && relax_bond_damping_ratio <= 1.0))
+    return fmt::format("relax_bond_damping_ratio = {}: must lie in [0, 1]", relax_bond_damping_ratio);
+  if (!(relax_energy_tolerance > 0.0 && relax_energy_tolerance < 1.0))
+    return fmt::format("relax_energy_tolerance = {}: must lie in (0, 1)", relax_energy_tolerance);
+  if (relax_max_steps < 0) return fmt::format("relax_max_steps = {}: must be >= 0", relax_max_steps);
   if (!(blade_hard_stiffness >= 0.0 && blade_hard_stiffness <= 1e9))
     return fmt::format("blade_hard_stiffness = {} N/m: must lie in [0, 1e9]", blade_hard_stiffness);
+  if (!(fibre_hard_stiffness >= 0.0 && fibre_hard_stiffness <= 1e9))
+    return fmt::format("fibre_hard_stiffness = {} N/m: must lie in [0, 1e9]", fibre_hard_stiffness);
   if (std::string why = adhesion.Validate(); !why.empty()) return "adhesion." + why;
   return {};
 }
@@ -158,11 +233,19 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   const double cot = std::cos(s.creping_angle) / std::sin(s.creping_angle);
   out.bonds_cut = CutAlongX(net, run_out + takeaway + std::abs(cot) * (x1 - x0) + 1e-4);
 
-  std::vector<std::size_t> fibre_fibre;
+  // Fibre-fibre bonds of the whole strip, and of its middle: the strip's cut ends (the
+  // blade's first blow on the leading end, the last glued stretch of the trailing end) have
+  // no counterpart in a continuous sheet.
+  std::vector<std::size_t> fibre_fibre, fibre_fibre_middle;
   std::size_t fibre_bonds_intact = 0;
+  const double end_zone = s.end_zone_fraction * (x1 - x0);
   for (std::size_t b = 0; b < n_bonds; ++b) {
     if (w.bonds.broken[b]) continue;
-    if (w.bonds.kind[b] == BondKind::kFibreFibre) fibre_fibre.push_back(b);
+    if (w.bonds.kind[b] == BondKind::kFibreFibre) {
+      fibre_fibre.push_back(b);
+      const double x = p.x[w.bonds.i[b]].x();
+      if (x >= x0 + end_zone && x <= x1 - end_zone) fibre_fibre_middle.push_back(b);
+    }
     fibre_bonds_intact += w.bonds.kind[b] == BondKind::kFibre;
   }
 
@@ -172,6 +255,8 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   w.physics.contacts = true;
   w.physics.friction = w.contact.mu > 0.0;
   w.physics.applied_loads = true;
+  const double hard_stiffness_before = w.contact.normal.hard_stiffness;
+  w.contact.normal.hard_stiffness = s.fibre_hard_stiffness;
   w.walls.assign(1, Wall{});  // the Yankee surface, at rest in its own frame, steel like the blade
   w.walls[0].hard_stiffness = s.blade_hard_stiffness;
   w.blades.clear();
@@ -240,12 +325,14 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
                                  steps, out.dt, (x1 - x0) * 1e3, steps));
 
   const double accounted0 = MeasureEnergy(w).Accounted(w.energy);
+  w.min_contact_ratio = 1.0;  // report the impact's own closest approach
   const double t0 = w.time;
   const std::int64_t every = std::max<std::int64_t>(1, steps / s.curve_samples);
   const std::int64_t frame_every =
       s.impact_frames > 0 ? std::max<std::int64_t>(1, steps / s.impact_frames) : 0;
   out.bond_loss.name = "creping_bond_loss";
-  out.bond_loss.columns = {"time_us", "fibre_fibre_broken_fraction", "adhesive_broken_fraction",
+  out.bond_loss.columns = {"time_us", "fibre_fibre_broken_fraction",
+                           "fibre_fibre_broken_fraction_all", "adhesive_broken_fraction",
                            "fibre_bonds_broken", "blade_force_N_per_m", "kinetic_J",
                            "energy_balance_error"};
   const std::int64_t n_all = static_cast<std::int64_t>(p.size());
@@ -259,11 +346,12 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     }
     return std::pair<std::size_t, std::size_t>{broken, total};
   };
-  auto ff_broken = [&] {
+  auto broken_among = [&](const std::vector<std::size_t>& bonds) {
     std::size_t broken = 0;
-    for (std::size_t b : fibre_fibre) broken += w.bonds.broken[b];
-    return fibre_fibre.empty() ? 0.0 : double(broken) / double(fibre_fibre.size());
+    for (std::size_t b : bonds) broken += w.bonds.broken[b];
+    return bonds.empty() ? 0.0 : double(broken) / double(bonds.size());
   };
+  auto ff_broken = [&] { return broken_among(fibre_fibre_middle); };
   auto fibre_broken = [&] {
     std::size_t intact = 0;
     for (std::size_t b = 0; b < n_bonds; ++b)
@@ -298,7 +386,8 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
                              ? std::abs(MeasureEnergy(w).Accounted(w.energy) - accounted0) / blade_work
                              : 0.0;
     const double ff = ff_broken();
-    out.bond_loss.Add({(w.time - t0) * 1e6, ff, double(broken_share(BondKind::kAdhesive).first) /
+    out.bond_loss.Add({(w.time - t0) * 1e6, ff, broken_among(fibre_fibre),
+                       double(broken_share(BondKind::kAdhesive).first) /
                                              double(out.adhesive_bonds),
                        fibre_broken(), bl.reaction.x() / Ly, KineticEnergy(w), error});
     if (progress.report && clock.Seconds() >= next_report) {
@@ -314,6 +403,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   out.blade_work = w.blades[0].work;
   out.energy_balance_error = out.bond_loss.rows.back().back();
   out.bonds_broken_fraction = ff_broken();
+  out.bonds_broken_fraction_all = broken_among(fibre_fibre);
   out.fibre_bonds_broken = fibre_broken();
   out.adhesive_broken_fraction =
       double(broken_share(BondKind::kAdhesive).first) / double(out.adhesive_bonds);
@@ -339,6 +429,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     dust_mass += mass[k];
   }
   out.dust_mass_fraction = dust_mass / total_mass;
+  out.sheet_mass_fraction = mass[sheet_piece] / total_mass;
 
   // The creped sheet in the frame of the blade face: u up the face, h out of it.
   const Vec3 tip = w.blades[0].tip;
@@ -400,7 +491,11 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   w.cell.lo.x() = lo - r_max;
   w.cell.hi.x() = hi + r_max;
   w.walls.assign(1, Wall{});
-  w.neighbours.Invalidate();
+  std::vector<std::uint8_t> keep(n_sheet, 0);
+  for (std::size_t i : creped) keep[i] = 1;
+  out.particles_removed = KeepParticles(net, keep);
+  RelaxCrepedSheet(net, sheet, s, progress, out);
+  w.contact.normal.hard_stiffness = hard_stiffness_before;
   return out;
 }
 

@@ -63,7 +63,27 @@ struct CrepingSettings {
   // Hard core of the steel blade and Yankee against a collapsed fibre wall (blade.h) [N/m]:
   // about the transverse modulus (1 GPa) times a particle's length along the fibre (32 um).
   double blade_hard_stiffness = 3e4;
+  // Hard core of fibre-fibre contacts during creping (VanWykParams::hard_stiffness): two
+  // collapsed fibre walls in series, half the blade's [N/m]. Without it the pile-up at the
+  // blade pressed cross-sections through each other (centre distance down to 2% of R_i + R_j).
+  double fibre_hard_stiffness = 1.5e4;
   AdhesionSettings adhesion;
+  // After the blade: the dust and the pieces left on the Yankee are removed, and the creped
+  // sheet, free of blade and coating, comes to rest on a floor by dynamic relaxation (masses
+  // x relax_mass_scale, background drag of relaxation time relax_damping_time, bond dashpots
+  // at relax_bond_damping_ratio of critical) until its
+  // kinetic energy is below relax_kinetic_ratio of its strain energy, or its strain energy
+  // changes by less than relax_energy_tolerance over 50 damping times.
+  double relax_mass_scale = 1000.0;  // >= 1
+  double relax_damping_time = 1e-5;  // [s]
+  double relax_bond_damping_ratio = 0.5;  // bond dashpots, fraction of critical, [0, 1]
+  double relax_kinetic_ratio = 1e-3; // (0, 1)
+  double relax_energy_tolerance = 0.01;  // (0, 1)
+  std::int64_t relax_max_steps = 50'000;
+  // bonds_broken_fraction counts the fibre-fibre bonds of the strip's middle: this fraction
+  // of its length at either cut end is left out (the blade's first blow on the leading end
+  // breaks bonds that a continuous sheet keeps). [0, 0.45]
+  double end_zone_fraction = 0.2;
   int curve_samples = 200;           // rows of the bond-loss curve
   int impact_frames = 0;             // snapshots kept during the impact (paper Fig. 6)
   std::int64_t max_steps = 20'000'000;
@@ -77,7 +97,9 @@ struct CrepingResult {
   double simulated_time = 0.0;             // [s]
   std::size_t adhesive_bonds = 0;
   std::size_t bonds_cut = 0;                // fibre and fibre-fibre bonds cut at the MD ends
-  double bonds_broken_fraction = 0.0;      // fibre-fibre bonds broken / those at the start
+  double bonds_broken_fraction = 0.0;      // fibre-fibre bonds broken / those at the start,
+                                           // in the strip's middle (end_zone_fraction)
+  double bonds_broken_fraction_all = 0.0;  // the same over the whole strip
   double fibre_bonds_broken = 0.0;         // intra-fibre bonds broken (fibres that broke)
   double adhesive_broken_fraction = 0.0;
   double crepe_frequency = 0.0;             // [1/m] of creped sheet
@@ -90,6 +112,10 @@ struct CrepingResult {
   double blade_work = 0.0;                  // [J]
   double peak_blade_force = 0.0;            // [N per m of width]
   std::size_t particles_past_blade = 0;     // most free particles behind the face at once
+  std::size_t particles_removed = 0;        // dust and pieces left on the Yankee
+  double sheet_mass_fraction = 0.0;         // creped sheet mass / sheet mass before
+  std::int64_t relax_steps = 0;
+  bool relaxed = false;                     // the creped sheet came to rest
   double min_contact_ratio = 1.0;
   Curve bond_loss;                          // time since the start of creping, broken
                                             // fractions, blade force, energies
@@ -98,9 +124,10 @@ struct CrepingResult {
   std::vector<std::string> warnings;
 };
 
-// Crepes the sheet; on return `net` holds the creped sheet laid in the sheet frame (x along
-// its MD, z up from its base, open along x, periodic along y) on the floor z = 0, anchors
-// and blade removed. Throws RunError when the run goes unstable.
+// Crepes the sheet; on return `net` holds the creped sheet alone (dust, the pieces left on
+// the Yankee, anchors and blade removed), laid in the sheet frame (x along its MD, z up from
+// its base, open along x, periodic along y) and relaxed at rest on the floor z = 0. Throws
+// RunError when the run goes unstable.
 CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings& s,
                     const MetricsSettings& metrics, std::uint64_t seed, const Progress& progress);
 

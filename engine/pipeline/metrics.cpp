@@ -8,20 +8,11 @@
 #include <fmt/format.h>
 
 #include "engine/pipeline/pairs.h"
+#include "engine/pipeline/percentile.h"
 
 namespace fibrenet::pipeline {
 
 namespace {
-
-// Linear interpolation between order statistics, q in [0, 1].
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const auto k = static_cast<std::size_t>(std::floor(pos));
-  if (k + 1 >= v.size()) return v.back();
-  return v[k] + (pos - static_cast<double>(k)) * (v[k + 1] - v[k]);
-}
 
 // Volume of the slice z in [a, b] of a sphere of radius r centred at z = 0.
 double SliceVolume(double r, double a, double b) {

@@ -1,5 +1,8 @@
 #include "engine/pipeline/network.h"
 
+#include <algorithm>
+#include <stdexcept>
+
 #include <fmt/format.h>
 
 namespace fibrenet::pipeline {
@@ -84,6 +87,116 @@ std::string Network::CheckInvariants() const {
   if (next_particle != p.size())
     return fmt::format("{} particles but the fibres own {}", p.size(), next_particle);
   return {};
+}
+
+namespace {
+
+template <class T>
+void KeepEntries(std::vector<T>& v, const std::vector<std::uint8_t>& keep) {
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (keep[i]) v[out++] = v[i];
+  v.resize(out);
+}
+
+}  // namespace
+
+std::size_t KeepParticles(Network& net, const std::vector<std::uint8_t>& keep) {
+  World& w = net.world;
+  Particles& p = w.particles;
+  Bonds& b = w.bonds;
+  if (keep.size() != p.size()) throw std::invalid_argument("KeepParticles: one flag per particle");
+  constexpr std::int32_t kGone = -1;
+  std::vector<std::int32_t> new_index(p.size(), kGone);
+  std::int32_t n_kept = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (keep[i]) new_index[i] = n_kept++;
+  const std::size_t removed = p.size() - static_cast<std::size_t>(n_kept);
+  if (removed == 0) return 0;
+
+  // Histories of the kept pairs in contact, before the indices change (the list may still
+  // name particles beyond p.size() that the caller dropped).
+  std::vector<PairHistory> history;
+  const bool had_list = w.neighbours.builds() > 0;
+  if (had_list)
+    for (PairHistory h : w.neighbours.ExportHistory()) {
+      if (static_cast<std::size_t>(h.j) >= p.size() || !keep[h.i] || !keep[h.j]) continue;
+      if (w.cell.Delta(p.x[h.i], p.x[h.j]).norm() >= p.radius[h.i] + p.radius[h.j]) continue;
+      h.i = new_index[h.i];
+      h.j = new_index[h.j];
+      history.push_back(h);
+    }
+
+  // Fibres: one record per run of kept particles; their intra-fibre bonds first, in order.
+  std::vector<FibreRecord> fibres;
+  std::vector<std::uint8_t> keep_bond(b.size(), 0);
+  std::vector<std::int32_t> bond_order;  // old ids of the kept bonds, in their new order
+  std::vector<std::int32_t> fibre_of(p.size(), -1);
+  for (const FibreRecord& f : net.fibres) {
+    for (int k = 0; k < f.particle_count;) {
+      if (!keep[f.first_particle + k]) {
+        ++k;
+        continue;
+      }
+      int end = k;
+      while (end < f.particle_count && keep[f.first_particle + end]) ++end;
+      FibreRecord run = f;
+      run.first_particle = new_index[f.first_particle + k];
+      run.particle_count = end - k;
+      run.first_bond = static_cast<std::int32_t>(bond_order.size());
+      run.bond_count = end - k - 1;
+      run.length = f.length * run.particle_count / f.particle_count;
+      for (int m = k; m < end; ++m) fibre_of[f.first_particle + m] = static_cast<std::int32_t>(fibres.size());
+      for (int m = k; m + 1 < end; ++m) {
+        bond_order.push_back(f.first_bond + m);
+        keep_bond[f.first_bond + m] = 1;
+      }
+      fibres.push_back(run);
+      k = end;
+    }
+  }
+  // Then every other bond whose ends both stay, in the order it had.
+  for (std::size_t k = 0; k < b.size(); ++k)
+    if (b.kind[k] != BondKind::kFibre && keep[b.i[k]] && keep[b.j[k]]) {
+      bond_order.push_back(static_cast<std::int32_t>(k));
+      keep_bond[k] = 1;
+    }
+  std::vector<std::int32_t> new_bond(b.size(), kGone);
+  for (std::size_t k = 0; k < bond_order.size(); ++k)
+    new_bond[bond_order[k]] = static_cast<std::int32_t>(k);
+
+  Bonds kept;
+  kept.types = b.types;
+  for (std::int32_t k : bond_order) {
+    kept.Add(new_index[b.i[k]], new_index[b.j[k]], b.type[k], b.kind[k], b.state[k]);
+    kept.broken.back() = b.broken[k];
+  }
+  for (BondBreakEvent e : b.events) {
+    if (new_bond[e.bond] == kGone) continue;
+    e.bond = new_bond[e.bond];
+    kept.events.push_back(e);
+  }
+  b = std::move(kept);
+
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (keep[i]) p.fibre[i] = fibre_of[i];
+  for (auto* v : {&p.x, &p.v, &p.omega, &p.force, &p.torque}) KeepEntries(*v, keep);
+  KeepEntries(p.q, keep);
+  for (auto* v : {&p.radius, &p.mass, &p.inv_mass, &p.inertia, &p.inv_inertia}) KeepEntries(*v, keep);
+  KeepEntries(p.fibre, keep);
+  for (auto* v : {&w.applied_force, &w.applied_torque})
+    if (v->size() == keep.size()) KeepEntries(*v, keep);
+  for (Wall& wall : w.walls)
+    if (wall.history.size() == keep.size()) KeepEntries(wall.history, keep);
+  net.fibres = std::move(fibres);
+
+  const double skin = w.neighbours.skin();
+  w.neighbours = NeighbourList{};
+  if (had_list) {
+    w.neighbours.Build(p, w.cell, b, skin);
+    w.neighbours.ImportHistory(history);
+  }
+  return removed;
 }
 
 SavedMasses ScaleMasses(World& w, double factor) {

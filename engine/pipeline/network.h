@@ -69,6 +69,14 @@ void RestoreMasses(World& w, const SavedMasses& saved);
 // bonds keep their state (it lives in the particles' body frames). The cell is left alone.
 void TransformRigidly(World& w, const Mat3& R, const Vec3& shift);
 
+// Removes every particle i with keep[i] == 0 (dust shed by creping), with its bonds: a bond
+// stays when both its ends stay. A fibre that loses particles is split into one fibre per run
+// of consecutive kept particles (a run may hold broken bonds), each with its share of the
+// fibre's length. Order is kept, so the fibre table's invariant holds afterwards; bond
+// failure events of kept bonds and the tangential histories of kept contacts carry over.
+// Returns the number of particles removed.
+std::size_t KeepParticles(Network& net, const std::vector<std::uint8_t>& keep);
+
 // Multiplies the four stiffnesses (k_n, k_s, k_b, k_t) of every fibre's intra-fibre bond
 // type by `factor` (soft falling or wet fibres). Returns the bond types as they were; the
 // caller puts them back (fibre-fibre bond types added meanwhile come after them).

@@ -171,6 +171,7 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
                      {"crepe_frequency_per_mm", r.crepe_frequency * 1e-3},
                      {"crepe_amplitude_um", r.crepe_amplitude * 1e6},
                      {"bonds_broken_fraction", r.bonds_broken_fraction},
+                     {"bonds_broken_fraction_all", r.bonds_broken_fraction_all},
                      {"fibre_bonds_broken", r.fibre_bonds_broken},
                      {"adhesive_bonds", static_cast<double>(r.adhesive_bonds)},
                      {"adhesive_broken_fraction", r.adhesive_broken_fraction},
@@ -184,7 +185,11 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
                      {"peak_blade_force_N_per_m", r.peak_blade_force},
                      {"particles_past_blade", static_cast<double>(r.particles_past_blade)},
                      {"min_contact_ratio", r.min_contact_ratio},
-                     {"bonds_cut_at_ends", static_cast<double>(r.bonds_cut)}};
+                     {"bonds_cut_at_ends", static_cast<double>(r.bonds_cut)},
+                     {"particles_removed", static_cast<double>(r.particles_removed)},
+                     {"sheet_mass_fraction", r.sheet_mass_fraction},
+                     {"relax_steps", static_cast<double>(r.relax_steps)},
+                     {"relaxed", r.relaxed ? 1.0 : 0.0}};
     stage.warnings = std::move(r.warnings);
     stage.curves.push_back(std::move(r.bond_loss));
     if (!r.crepe_profile.rows.empty()) stage.curves.push_back(std::move(r.crepe_profile));

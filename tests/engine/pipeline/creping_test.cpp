@@ -42,6 +42,31 @@ Creped CrepeSheet(const CrepingSettings& s) {
   return c;
 }
 
+// Particles in the piece of particle 0, over intact bonds.
+std::size_t PieceOfFirstParticle(const World& w) {
+  std::vector<std::vector<std::int32_t>> linked(w.particles.size());
+  for (std::size_t b = 0; b < w.bonds.size(); ++b) {
+    if (w.bonds.broken[b]) continue;
+    linked[w.bonds.i[b]].push_back(w.bonds.j[b]);
+    linked[w.bonds.j[b]].push_back(w.bonds.i[b]);
+  }
+  std::vector<std::uint8_t> seen(w.particles.size(), 0);
+  std::vector<std::int32_t> todo{0};
+  seen[0] = 1;
+  std::size_t count = 0;
+  while (!todo.empty()) {
+    const std::int32_t i = todo.back();
+    todo.pop_back();
+    ++count;
+    for (std::int32_t j : linked[i])
+      if (!seen[j]) {
+        seen[j] = 1;
+        todo.push_back(j);
+      }
+  }
+  return count;
+}
+
 void ExpectSound(const Creped& c, double mass_before) {
   const CrepingResult& r = c.result;
   EXPECT_EQ(r.particles_past_blade, 0u);
@@ -50,8 +75,18 @@ void ExpectSound(const Creped& c, double mass_before) {
   EXPECT_GT(r.bonds_broken_fraction, 0.0);
   EXPECT_LT(r.bonds_broken_fraction, 1.0);
   EXPECT_EQ(c.net.CheckInvariants(), "");
-  EXPECT_NEAR(c.net.TotalMass(), mass_before, 1e-12 * mass_before) << "anchors removed";
-  for (const Vec3& x : c.net.world.particles.x) ASSERT_TRUE(x.allFinite());
+  // Only the creped sheet is left: anchors, dust and the pieces left on the Yankee removed.
+  EXPECT_NEAR(c.net.TotalMass(), r.sheet_mass_fraction * mass_before, 1e-12 * mass_before);
+  EXPECT_LE(r.sheet_mass_fraction, 1.0 - r.dust_mass_fraction + 1e-12);
+  EXPECT_EQ(c.net.world.particles.size() + r.particles_removed, Pressed().network.world.particles.size());
+  EXPECT_EQ(PieceOfFirstParticle(c.net.world), c.net.world.particles.size()) << "one piece";
+  // At rest on the floor.
+  EXPECT_TRUE(r.relaxed) << (r.warnings.empty() ? "" : r.warnings.back()) << ", " << r.relax_steps << " steps";
+  for (std::size_t i = 0; i < c.net.world.particles.size(); ++i) {
+    const Vec3& x = c.net.world.particles.x[i];
+    ASSERT_TRUE(x.allFinite());
+    EXPECT_GT(x.z(), 0.5 * c.net.world.particles.radius[i]) << "particle " << i << " in the floor";
+  }
 }
 
 TEST(Creping, StableAtOnceAndTwiceTheYankeeSpeedWithTheImpactEnergyAccounted) {
