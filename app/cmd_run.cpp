@@ -53,11 +53,13 @@ campaigns::StageSnapshot LoadStart(const std::string& path, const pipeline::Pipe
                                    const campaigns::SnapshotOrigin& scene) {
   campaigns::StageSnapshot start = campaigns::ReadStageSnapshot(path);
   const std::string& last = start.state.stages.back().name;
-  if (last != "forming" && last != spec.Consolidation())
+  const bool creped = last == "creping" && spec.creping;
+  if (last != "forming" && last != spec.Consolidation() && !creped)
     throw InputError(fmt::format(
         "{}: holds the network after {}, but {} has no [{}] stage to continue after (accepted: "
-        "a snapshot after forming{})", path, last, scene.scene, last,
-        spec.Consolidation().empty() ? "" : " or after " + spec.Consolidation()));
+        "a snapshot after forming{}{})", path, last, scene.scene, last,
+        spec.Consolidation().empty() ? "" : " or after " + spec.Consolidation(),
+        spec.creping ? " or after creping" : ""));
   if (start.origin.scene_hash != scene.scene_hash || start.origin.seed != scene.seed)
     std::cerr << fmt::format("note: {} was made from {} (seed {}), not from this scene text and "
                              "seed; its stages are kept as they are and the stages after {} "

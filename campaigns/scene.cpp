@@ -266,8 +266,8 @@ pipeline::CrepingSettings ReadCreping(TableReader& r, ReadContext& ctx) {
   if (const toml::table* a = r.Table("adhesion")) {
     TableReader ar(a, r.Path("adhesion"), ctx);
     pipeline::AdhesionSettings& ad = c.adhesion;
-    ad.F_r0 = ar.Number("F_r0_mN", 10, OpenClosed(0, 1e6), "mN") * 1e-3;
-    ad.F_s0 = ar.Number("F_s0_mN", 10, OpenClosed(0, 1e6), "mN") * 1e-3;
+    ad.F_r0 = ar.Number("F_r0_mN", 7, OpenClosed(0, 1e6), "mN") * 1e-3;
+    ad.F_s0 = ar.Number("F_s0_mN", 7, OpenClosed(0, 1e6), "mN") * 1e-3;
     ad.strength_cv = ar.Number("strength_cv", 0, Closed(0, 2), "");
     ad.modulus = ar.Number("modulus_MPa", 100, OpenClosed(0, 1e6), "MPa") * 1e6;
     ad.shear_modulus = ar.Number("shear_modulus_MPa", 30, OpenClosed(0, 1e6), "MPa") * 1e6;
