@@ -130,84 +130,74 @@ void ClearHistory(Vec3& xi) {
   if (xi.x() != 0.0 || xi.y() != 0.0 || xi.z() != 0.0) xi.setZero();
 }
 
-}  // namespace
-
-void AccumulateWallForces(World& w, StepLosses& losses) {
+// One rigid surface against every free particle: touch(i) gives the particle's centre-to-
+// surface gap and the normal pointing into it. Adds the forces and torques, returns the force
+// the particles exert on the surface, and books the losses.
+template <class TouchOf>
+Vec3 AccumulateSurface(World& w, const ContactParams& law, TouchOf touch,
+                       const Vec3& surface_velocity, std::vector<Vec3>& history, bool friction,
+                       double hard_stiffness, double hard_gap, StepLosses& losses) {
   Particles& p = w.particles;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
   const double dt = w.settings.dt;
-  const ContactParams law = w.contact.ForSurface();
-  for (Wall& wall : w.walls) {
-    if (wall.history.size() != p.size()) wall.history.assign(p.size(), Vec3::Zero());
-    const bool friction = w.physics.friction && wall.friction;
-    const Vec3 normal(0.0, 0.0, static_cast<double>(wall.side));  // points into the particles
-    const Vec3 wall_velocity(0.0, 0.0, wall.vz);
-    const Relief* relief = wall.relief.get();
-    double fx = 0.0, fy = 0.0, fz = 0.0, damping = 0.0, slip = 0.0, min_ratio = 1.0;
+  if (history.size() != p.size()) history.assign(p.size(), Vec3::Zero());
+  double fx = 0.0, fy = 0.0, fz = 0.0, damping = 0.0, slip = 0.0, min_ratio = 1.0;
 #pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, damping, slip) \
     reduction(min : min_ratio)
-    for (std::int64_t i = 0; i < n; ++i) {
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Blade::Touch t = touch(i);
+    // A fixed particle's motion is prescribed: surfaces act on free particles only.
+    if (t.gap >= p.radius[i] || p.inv_mass[i] == 0.0) {
+      ClearHistory(history[i]);
+      continue;
+    }
+    const SurfaceResult r = SurfaceContact(w, law, i, t.normal, t.gap, surface_velocity,
+                                           history[i], friction, hard_stiffness, hard_gap);
+    p.force[i] -= r.on_surface;
+    p.torque[i] += r.torque;
+    fx += r.on_surface.x();
+    fy += r.on_surface.y();
+    fz += r.on_surface.z();
+    damping += r.damping_power * dt;
+    slip += r.slip_loss;
+    min_ratio = std::min(min_ratio, std::max(t.gap, 5e-4 * p.radius[i]) / p.radius[i]);
+  }
+  losses.damping += damping;
+  losses.friction += slip;
+  losses.min_contact_ratio = std::min(losses.min_contact_ratio, min_ratio);
+  return Vec3(fx, fy, fz);
+}
+
+}  // namespace
+
+void AccumulateWallForces(World& w, StepLosses& losses) {
+  const Particles& p = w.particles;
+  const ContactParams law = w.contact.ForSurface();
+  for (Wall& wall : w.walls) {
+    const Vec3 normal(0.0, 0.0, static_cast<double>(wall.side));  // points into the particles
+    const Relief* relief = wall.relief.get();
+    auto touch = [&](std::int64_t i) {
       const double surface =
           relief ? wall.z + wall.side * relief->At(p.x[i].x(), p.x[i].y()) : wall.z;
-      const double gap = (p.x[i].z() - surface) * wall.side;  // centre to wall
-      // A fixed particle's motion is prescribed: walls act on free particles only.
-      if (gap >= p.radius[i] || p.inv_mass[i] == 0.0) {
-        ClearHistory(wall.history[i]);
-        continue;
-      }
-      const SurfaceResult r = SurfaceContact(w, law, i, normal, gap, wall_velocity, wall.history[i],
-                                             friction, wall.hard_stiffness, wall.hard_gap);
-      p.force[i] -= r.on_surface;
-      p.torque[i] += r.torque;
-      fx += r.on_surface.x();
-      fy += r.on_surface.y();
-      fz += r.on_surface.z();
-      damping += r.damping_power * dt;
-      slip += r.slip_loss;
-      min_ratio = std::min(min_ratio, std::max(gap, 5e-4 * p.radius[i]) / p.radius[i]);
-    }
-    wall.reaction = Vec3(fx, fy, fz);
+      return Blade::Touch{normal, (p.x[i].z() - surface) * wall.side};  // centre to wall
+    };
+    wall.reaction = AccumulateSurface(w, law, touch, Vec3(0.0, 0.0, wall.vz), wall.history,
+                                      w.physics.friction && wall.friction, wall.hard_stiffness,
+                                      wall.hard_gap, losses);
     // Energy the moving wall feeds in: force on the particles times the wall's travel.
-    wall.work += -fz * wall.vz * dt;
-    losses.damping += damping;
-    losses.friction += slip;
-    losses.min_contact_ratio = std::min(losses.min_contact_ratio, min_ratio);
+    wall.work += -wall.reaction.z() * wall.vz * w.settings.dt;
   }
 }
 
 void AccumulateBladeForces(World& w, StepLosses& losses) {
-  Particles& p = w.particles;
-  const std::int64_t n = static_cast<std::int64_t>(p.size());
-  const double dt = w.settings.dt;
+  const Particles& p = w.particles;
   const ContactParams law = w.contact.ForSurface();
   for (Blade& blade : w.blades) {
-    if (blade.history.size() != p.size()) blade.history.assign(p.size(), Vec3::Zero());
-    const bool friction = w.physics.friction && blade.friction;
-    double fx = 0.0, fy = 0.0, fz = 0.0, damping = 0.0, slip = 0.0, min_ratio = 1.0;
-#pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, damping, slip) \
-    reduction(min : min_ratio)
-    for (std::int64_t i = 0; i < n; ++i) {
-      const Blade::Touch t = blade.Nearest(p.x[i]);
-      if (t.gap >= p.radius[i] || p.inv_mass[i] == 0.0) {
-        ClearHistory(blade.history[i]);
-        continue;
-      }
-      const SurfaceResult r = SurfaceContact(w, law, i, t.normal, t.gap, blade.velocity, blade.history[i],
-                                             friction, blade.hard_stiffness, blade.hard_gap);
-      p.force[i] -= r.on_surface;
-      p.torque[i] += r.torque;
-      fx += r.on_surface.x();
-      fy += r.on_surface.y();
-      fz += r.on_surface.z();
-      damping += r.damping_power * dt;
-      slip += r.slip_loss;
-      min_ratio = std::min(min_ratio, std::max(t.gap, 5e-4 * p.radius[i]) / p.radius[i]);
-    }
-    blade.reaction = Vec3(fx, fy, fz);
-    blade.work += -blade.reaction.dot(blade.velocity) * dt;
-    losses.damping += damping;
-    losses.friction += slip;
-    losses.min_contact_ratio = std::min(losses.min_contact_ratio, min_ratio);
+    auto touch = [&](std::int64_t i) { return blade.Nearest(p.x[i]); };
+    blade.reaction = AccumulateSurface(w, law, touch, blade.velocity, blade.history,
+                                       w.physics.friction && blade.friction, blade.hard_stiffness,
+                                       blade.hard_gap, losses);
+    blade.work += -blade.reaction.dot(blade.velocity) * w.settings.dt;
   }
 }
 

@@ -337,21 +337,17 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
                            "energy_balance_error"};
   const std::int64_t n_all = static_cast<std::int64_t>(p.size());
   const double rate = 1.0 / s.takeaway_time;
-  auto broken_share = [&](BondKind kind) {
-    std::size_t broken = 0, total = 0;
-    for (std::size_t b = 0; b < w.bonds.size(); ++b) {
-      if (w.bonds.kind[b] != kind) continue;
-      ++total;
-      broken += w.bonds.broken[b];
-    }
-    return std::pair<std::size_t, std::size_t>{broken, total};
+  // The adhesive bonds are the ones appended after the sheet's.
+  auto adhesive_broken = [&] {
+    std::size_t broken = 0;
+    for (std::size_t b = n_bonds; b < w.bonds.size(); ++b) broken += w.bonds.broken[b];
+    return double(broken) / double(out.adhesive_bonds);
   };
   auto broken_among = [&](const std::vector<std::size_t>& bonds) {
     std::size_t broken = 0;
     for (std::size_t b : bonds) broken += w.bonds.broken[b];
     return bonds.empty() ? 0.0 : double(broken) / double(bonds.size());
   };
-  auto ff_broken = [&] { return broken_among(fibre_fibre_middle); };
   auto fibre_broken = [&] {
     std::size_t intact = 0;
     for (std::size_t b = 0; b < n_bonds; ++b)
@@ -385,10 +381,8 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     const double error = blade_work > 0.0
                              ? std::abs(MeasureEnergy(w).Accounted(w.energy) - accounted0) / blade_work
                              : 0.0;
-    const double ff = ff_broken();
-    out.bond_loss.Add({(w.time - t0) * 1e6, ff, broken_among(fibre_fibre),
-                       double(broken_share(BondKind::kAdhesive).first) /
-                                             double(out.adhesive_bonds),
+    const double ff = broken_among(fibre_fibre_middle);
+    out.bond_loss.Add({(w.time - t0) * 1e6, ff, broken_among(fibre_fibre), adhesive_broken(),
                        fibre_broken(), bl.reaction.x() / Ly, KineticEnergy(w), error});
     if (progress.report && clock.Seconds() >= next_report) {
       progress.Say(fmt::format("creping: {:.0f}% of the sheet scraped, t = {:.1f} us, fibre-fibre "
@@ -402,11 +396,10 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   out.simulated_time = steps * out.dt;
   out.blade_work = w.blades[0].work;
   out.energy_balance_error = out.bond_loss.rows.back().back();
-  out.bonds_broken_fraction = ff_broken();
+  out.bonds_broken_fraction = broken_among(fibre_fibre_middle);
   out.bonds_broken_fraction_all = broken_among(fibre_fibre);
   out.fibre_bonds_broken = fibre_broken();
-  out.adhesive_broken_fraction =
-      double(broken_share(BondKind::kAdhesive).first) / double(out.adhesive_bonds);
+  out.adhesive_broken_fraction = adhesive_broken();
   out.min_contact_ratio = w.min_contact_ratio;
 
   // Pieces: the creped sheet is the heaviest; pieces still glued stay on the Yankee; the rest
