@@ -1,6 +1,7 @@
 #include "db/results_db.h"
 
 #include <SQLiteCpp/Transaction.h>
+#include <sqlite3.h>
 
 #include <unistd.h>
 
@@ -15,6 +16,9 @@ namespace fibrenet::db {
 namespace {
 
 using detail::kNowSql;
+
+// How long the checkpoint at close waits for a reader to leave the WAL.
+constexpr int kCloseCheckpointWaitMs = 100;
 
 void require_finite(const std::string& path, double value, const std::string& what) {
   if (!std::isfinite(value)) {
@@ -141,9 +145,33 @@ ResultsDb::ResultsDb(const std::string& path, OpenMode mode) : path_(path), mode
   }
 }
 
-ResultsDb::~ResultsDb() = default;
+ResultsDb::~ResultsDb() { checkpoint_before_close(); }
 ResultsDb::ResultsDb(ResultsDb&&) noexcept = default;
-ResultsDb& ResultsDb::operator=(ResultsDb&&) noexcept = default;
+
+ResultsDb& ResultsDb::operator=(ResultsDb&& other) noexcept {
+  if (this != &other) {
+    checkpoint_before_close();
+    path_ = std::move(other.path_);
+    mode_ = other.mode_;
+    db_ = std::move(other.db_);
+  }
+  return *this;
+}
+
+void ResultsDb::checkpoint_before_close() noexcept {
+  if (!db_ || mode_ != OpenMode::kReadWrite) return;
+  // Copy everything into the main file so that the .db alone is complete. The close that
+  // follows skips SQLite's own checkpoint (prepare_for_writing), whose exclusive lock made a
+  // reader opening in that instant fail with "database is locked". Waiting here is short:
+  // if another connection holds the write lock or a reader is still on the WAL, this copies
+  // what it can without blocking anyone, and the WAL keeps the rest for the next open.
+  sqlite3_busy_timeout(db_->getHandle(), kCloseCheckpointWaitMs);
+  try {
+    db_->exec("PRAGMA wal_checkpoint(TRUNCATE)");
+  } catch (const std::exception&) {
+    // Out of disk or I/O error: the WAL still holds the data; the next open recovers it.
+  }
+}
 
 int ResultsDb::schema_version() const {
   return detail::guarded(path_, "reading the schema version",

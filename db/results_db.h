@@ -92,6 +92,9 @@ class ResultsDb {
   SQLite::Database& connection() const { return *db_; }
 
  private:
+  // Moves the WAL's content into the database file before the connection closes.
+  void checkpoint_before_close() noexcept;
+
   std::string path_;
   OpenMode mode_ = OpenMode::kReadWrite;
   std::unique_ptr<SQLite::Database> db_;

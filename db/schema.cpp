@@ -1,6 +1,7 @@
 #include "db/schema.h"
 
 #include <SQLiteCpp/Transaction.h>
+#include <sqlite3.h>
 
 #include <string>
 
@@ -187,6 +188,11 @@ void prepare_for_writing(SQLite::Database& db, const std::string& path) {
           detail::message(path, "cannot switch to WAL journal mode",
                           "SQLite kept '" + mode + "' (is it on a network file system?)"));
     }
+    // SQLite's checkpoint at close takes an exclusive lock and deletes the WAL: a reader that
+    // opens the file in that instant gets "database is locked" at once, whatever its busy
+    // timeout. The writer checkpoints before it closes instead (ResultsDb), so the file ends
+    // complete, with an empty -wal and the -shm file left beside it.
+    sqlite3_db_config(db.getHandle(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
   });
   for (const Migration& m : kMigrations) {
     if (m.version > version) apply(db, path, m);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
 #include <future>
 #include <string>
 #include <thread>
@@ -80,6 +81,29 @@ TEST(Concurrency, ASecondWriterWaitsForTheLockThenSucceeds) {
   EXPECT_GE(Clock::now() - start, std::chrono::milliseconds(200));
   other.join();
   EXPECT_EQ(candidates(db, "soft-strong").size(), 1u);
+}
+
+TEST(Concurrency, ClosedWriterLeavesTheDataInTheFileAndTheEmptyWalInPlace) {
+  TempDbPath path;
+  const std::string copy = path.str() + "-copy.db";
+  {
+    ResultsDb writer(path.str());
+    const std::int64_t c = writer.upsert_campaign("soft-strong", "spec", "h", "0.1.0", "abc");
+    writer.insert_candidate(c, 0, "k0", "cheap", {1}, {{"x", 1.0}});
+    EXPECT_GT(std::filesystem::file_size(path.str() + "-wal"), 0u);
+  }
+  // Checkpointed before the close: the WAL is empty but still there, since SQLite's own
+  // checkpoint at close (an exclusive lock that makes a reader opening just then fail at once)
+  // was skipped.
+  ASSERT_TRUE(std::filesystem::exists(path.str() + "-wal"));
+  EXPECT_EQ(std::filesystem::file_size(path.str() + "-wal"), 0u);
+  // The .db file alone, copied without its -wal, holds everything.
+  std::filesystem::copy_file(path.str(), copy, std::filesystem::copy_options::overwrite_existing);
+  {
+    ResultsDb reader(copy, OpenMode::kReadOnly);
+    EXPECT_EQ(candidates(reader, "soft-strong").size(), 1u);
+  }
+  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(copy + suffix);
 }
 
 }  // namespace
