@@ -1,9 +1,11 @@
 // `fibrenet bench [--json] [--particles N] [--steps S] [--threads T] [--warmup W]
-//  [--no-friction] [--no-contacts] [--no-gravity] [--scaling]`: throughput of the fibre bed
+//  [--no-friction] [--no-contacts] [--no-gravity] [--drag] [--viscoelastic] [--write-bed F]
+//  [--scaling]`: throughput of the fibre bed
 // scene (SPEC section 6). One run by default; --scaling runs the series of
 // docs/performance.md (particle counts 1e4 .. 1e6, then 1 against 2 threads at 5e4).
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -28,9 +30,37 @@ struct BenchCliOptions {
   long long warmup = 200;
   int threads = 0;
   bool no_friction = false, no_contacts = false, no_gravity = false;
+  bool drag = false, viscoelastic = false;
   bool scaling = false;
   unsigned long long seed = 1;
+  std::string write_bed;  // CSV of the bed after the warmup, for other codes
 };
+
+// The bed after the warmup as CSV, for running the same state in other DEM codes
+// (scripts/compare/): '#' lines give the cell and the physics, then one row per particle
+// in fibre order; consecutive particles of one fibre are bonded.
+void WriteBed(const std::string& path, const bench::FibreBedSpec& bed, const World& w) {
+  std::ofstream out(path);
+  if (!out) throw InputError(fmt::format("--write-bed {}: cannot open the file for writing", path));
+  const Cell& c = w.cell;
+  out << fmt::format("# fibrenet fibre bed after the warmup, step {}, dt {:.17g} s\n", w.step,
+                     w.settings.dt);
+  out << fmt::format("# cell {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}\n", c.lo.x(),
+                     c.hi.x(), c.lo.y(), c.hi.y(), c.lo.z(), c.hi.z());
+  out << fmt::format(
+      "# E {:.17g} G {:.17g} mu {:.17g} restitution {:.17g} gravity {:.17g} particles_per_fibre {}\n",
+      bed.E, bed.G, bed.mu, bed.restitution, bed.use_gravity ? bed.gravity : 0.0,
+      bed.particles_per_fibre);
+  out << "fibre,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass\n";
+  const Particles& p = w.particles;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    out << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
+                       "{:.17g},{:.17g}\n",
+                       p.fibre[i], p.x[i].x(), p.x[i].y(), p.x[i].z(), p.v[i].x(), p.v[i].y(),
+                       p.v[i].z(), p.omega[i].x(), p.omega[i].y(), p.omega[i].z(), p.radius[i],
+                       p.mass[i]);
+  if (!out.flush()) throw RunError(fmt::format("--write-bed {}: writing failed", path));
+}
 
 // Checks the command line (names the option and its range) and turns it into options.
 bench::BenchOptions ToOptions(const BenchCliOptions& o) {
@@ -48,11 +78,9 @@ bench::BenchOptions ToOptions(const BenchCliOptions& o) {
   b.bed.friction = !o.no_friction;
   b.bed.contacts = !o.no_contacts;
   b.bed.use_gravity = !o.no_gravity;
+  if (o.drag) b.bed.drag_coefficient = bench::kStokesDragOfBedParticle;
+  if (o.viscoelastic) b.bed.maxwell_tau = bench::kBenchMaxwellTau;
   b.bed.seed = o.seed;
-  if (const char* e = std::getenv("FB_APPROACH")) b.bed.approach_speed = std::atof(e);  // TEMP
-  if (const char* e = std::getenv("FB_GAP")) b.bed.gap = std::atof(e);  // TEMP
-  if (const char* e = std::getenv("FB_G")) b.bed.gravity = std::atof(e);  // TEMP
-  if (std::getenv("FB_LAYERS")) b.bed.deposit = false;  // TEMP
   b.steps = o.steps;
   b.warmup = o.warmup;
   b.threads = o.threads;
@@ -96,6 +124,8 @@ nlohmann::json ToJson(const bench::BenchOptions& o, const bench::BenchResult& r)
             {"initial_gap_m", o.bed.gap},
             {"mu", o.bed.mu},
             {"restitution", o.bed.restitution},
+            {"drag_coefficient_N_s_per_m", o.bed.drag_coefficient},
+            {"maxwell_tau_s", o.bed.maxwell_tau},
             {"bond_modes", 6}}}};
 }
 
@@ -103,7 +133,8 @@ void PrintHuman(const bench::BenchOptions& o, const bench::BenchResult& r) {
   std::cout << fmt::format(
       "fibre bed: {} particles ({} fibres of {}, {} layers, cell {:.3f} mm), {} bonds\n"
       "physics: contacts {}, friction {}, gravity {} ({:.3g} m/s^2 = {:.0f} g, scaled so the "
-      "bed lands within the warmup; layers start {:.2g} um apart, closing at {} m/s)\n"
+      "bed lands within the warmup; layers start {:.2g} um apart, closing at {} m/s), drag {}, "
+      "viscoelastic bonds {}\n"
       "time step {:.4g} s, {} warmup + {} timed steps on {} thread(s)\n"
       "wall {:.3f} s (CPU {:.3f} s): {:.4g} particle-steps/s ({:.1f} ns per particle-step)\n"
       "contacts per particle {:.3f}, neighbour pairs {}, rebuilds {} (timed) / {} (total), "
@@ -112,7 +143,8 @@ void PrintHuman(const bench::BenchOptions& o, const bench::BenchResult& r) {
       r.bed.particles, r.bed.fibres, o.bed.particles_per_fibre, r.bed.layers,
       r.bed.cell_side * 1e3, r.bed.bonds, o.bed.contacts ? "on" : "off",
       o.bed.friction ? "on" : "off", o.bed.use_gravity ? "on" : "off", o.bed.gravity,
-      o.bed.gravity / 9.81, o.bed.gap * 1e6, o.bed.approach_speed, r.dt_s, r.warmup, r.steps,
+      o.bed.gravity / 9.81, o.bed.gap * 1e6, o.bed.approach_speed,
+      o.bed.drag_coefficient > 0.0 ? "on" : "off", o.bed.maxwell_tau > 0.0 ? "on" : "off", r.dt_s, r.warmup, r.steps,
       r.threads, r.wall_s, r.cpu_s, r.particle_steps_per_s, r.ns_per_particle_step,
       r.contacts_per_particle, r.neighbour_pairs, r.neighbour_rebuilds,
       r.neighbour_builds_total, r.min_contact_ratio, r.peak_rss_mb,
@@ -163,7 +195,9 @@ int RunScaling(const BenchCliOptions& cli) {
 
 int RunBench(const BenchCliOptions& cli) {
   if (cli.scaling) return RunScaling(cli);
-  const bench::BenchOptions o = ToOptions(cli);
+  bench::BenchOptions o = ToOptions(cli);
+  if (!cli.write_bed.empty())
+    o.after_warmup = [&](const World& w) { WriteBed(cli.write_bed, o.bed, w); };
   const bench::BenchResult r = bench::RunFibreBedBench(o);
   if (cli.json) std::cout << ToJson(o, r).dump(2) << "\n";
   else PrintHuman(o, r);
@@ -187,6 +221,11 @@ void AddBenchCommand(CLI::App& app, Context& context) {
   cmd->add_flag("--no-friction", o->no_friction, "Frictionless contacts and floor");
   cmd->add_flag("--no-contacts", o->no_contacts, "No fibre-fibre contacts (floor only)");
   cmd->add_flag("--no-gravity", o->no_gravity, "No gravity");
+  cmd->add_flag("--drag", o->drag, "Air drag on every particle (Stokes drag of a 16 um sphere)");
+  cmd->add_flag("--viscoelastic", o->viscoelastic,
+                "Maxwell dashpot in the fibre bonds' axial mode (relaxation time 1 ms)");
+  cmd->add_option("--write-bed", o->write_bed,
+                  "Write the bed after the warmup as CSV (for scripts/compare/)");
   cmd->add_flag("--scaling", o->scaling,
                 "Run the series 1e4 .. 1e6 particles and 1 vs 2 threads at 5e4 (minutes)");
   cmd->callback([o, &context] { context.exit_code = RunBench(*o); });

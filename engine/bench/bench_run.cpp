@@ -75,6 +75,7 @@ BenchResult RunFibreBedBench(const BenchOptions& options) {
   r.dt_s = w.settings.dt;
   const auto t1 = Clock::now();
   sim.Run(options.warmup);
+  if (options.after_warmup) options.after_warmup(w);
   const auto t2 = Clock::now();
   const std::size_t builds_before = w.neighbours.builds();
   const double cpu_before = CpuSeconds();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "engine/bench/fibre_bed.h"
@@ -15,6 +16,9 @@ struct BenchOptions {
   std::int64_t steps = 200;   // timed steps, >= 1
   std::int64_t warmup = 200;  // untimed steps first, >= 0
   int threads = 0;            // OpenMP threads; 0 = the OpenMP default
+  // Called with the bed after the warmup, before the timed steps (e.g. to export the state
+  // that other codes then time from).
+  std::function<void(const World&)> after_warmup;
 
   // Empty when valid; otherwise names the field and its accepted range.
   std::string Validate() const;

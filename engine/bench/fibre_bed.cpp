@@ -196,6 +196,10 @@ std::string FibreBedSpec::Validate() const {
   if (!(restitution > 0.0 && restitution <= 1.0))
     return fmt::format("restitution = {}: must be in (0, 1]", restitution);
   if (!(safety > 0.0 && safety <= 1.0)) return fmt::format("safety = {}: must be in (0, 1]", safety);
+  if (!(std::isfinite(drag_coefficient) && drag_coefficient >= 0.0))
+    return fmt::format("drag_coefficient = {} N s/m: must be >= 0", drag_coefficient);
+  if (!(std::isfinite(maxwell_tau) && maxwell_tau >= 0.0))
+    return fmt::format("maxwell_tau = {} s: must be >= 0", maxwell_tau);
   return {};
 }
 
@@ -245,7 +249,9 @@ FibreBedInfo BuildFibreBed(const FibreBedSpec& spec, World& w) {
   Particles& p = w.particles;
   p.Reserve(static_cast<std::size_t>(fibres) * ppf);
   const double mass = spec.coarseness * spacing;
-  const std::int32_t type = w.bonds.AddType(BeamBondParams::FromBeam(spec.E, spec.G, R, spacing));
+  BeamBondParams bond = BeamBondParams::FromBeam(spec.E, spec.G, R, spacing);
+  bond.maxwell_tau = spec.maxwell_tau;
+  const std::int32_t type = w.bonds.AddType(bond);
   const std::size_t n_bonds = static_cast<std::size_t>(fibres) * (ppf - 1);
   w.bonds.i.reserve(n_bonds);
   w.bonds.j.reserve(n_bonds);
@@ -280,6 +286,8 @@ FibreBedInfo BuildFibreBed(const FibreBedSpec& spec, World& w) {
   w.physics.friction = spec.friction;
   w.physics.gravity = spec.use_gravity;
   w.physics.g = Vec3(0.0, 0.0, -spec.gravity);
+  w.physics.drag = spec.drag_coefficient > 0.0;
+  w.physics.drag_coefficient = spec.drag_coefficient;
   Wall floor;
   floor.z = 0.0;
   floor.side = +1;

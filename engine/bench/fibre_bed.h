@@ -22,6 +22,12 @@
 
 namespace fibrenet::bench {
 
+// Stokes drag of a bed particle in air, 6 pi mu_air R [N s/m], and a Maxwell relaxation time
+// of the order measured for wet paper [s]: the values `fibrenet bench --drag --viscoelastic`
+// switches on.
+inline constexpr double kStokesDragOfBedParticle = 6.0 * 3.141592653589793 * 1.8e-5 * 16e-6;
+inline constexpr double kBenchMaxwellTau = 1e-3;
+
 struct FibreBedSpec {
   // Particles requested; the bed holds the largest whole number of fibres not above it.
   std::int64_t particles = 50000;
@@ -41,6 +47,11 @@ struct FibreBedSpec {
   bool contacts = true;        // non-bonded fibre-fibre contacts (van Wyk)
   bool friction = true;        // friction on contacts and on the floor
   bool use_gravity = true;
+  // Physics the bed does not need, switchable to show what they cost: linear air drag per
+  // particle [N s/m] (0 = off) and the fibre bonds' axial Maxwell relaxation time [s] (0 =
+  // elastic).
+  double drag_coefficient = 0.0;
+  double maxwell_tau = 0.0;
   bool spatial_order = true;   // sort fibres by the Morton index of their centre's tile
   // true: each fibre is lowered onto the fibres placed before it (it rests on its highest
   // support, `gap` above it); false: layer k sits at height R + gap + k (2R + gap).
