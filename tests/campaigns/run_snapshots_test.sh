@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # `fibrenet run --out` writes a snapshot per network stage (HDF5 + XDMF), the last one
 # coloured by the fibres' strain energy at the tensile peak; `fibrenet run --from` continues
-# from a snapshot and ends where the uninterrupted run ended; snapshots that do not fit the
-# scene are refused with exit code 2. Usage: run_snapshots_test.sh FIBRENET TINY_SCENE
+# from a snapshot and ends where the uninterrupted run ended (from a creping snapshot it runs
+# only the virtual tests, on the creped sheet); snapshots that do not fit the scene are
+# refused with exit code 2. Usage: run_snapshots_test.sh FIBRENET TINY_SCENE
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 fibrenet=$1
 scene=$2
@@ -31,6 +32,23 @@ assert a["stages"][0]["metrics"] == b["stages"][0]["metrics"], "forming report n
 PY
 [ -s cont/snapshots/pressing.h5 ] || fail "the continued run wrote no pressing snapshot"
 [ ! -e cont/snapshots/forming.h5 ] || fail "the continued run rewrote the forming snapshot"
+
+# Creped: the tests run on the creped sheet from its snapshot give the uninterrupted run's
+# metrics, and the creping report is carried over.
+cp scene.toml creped.toml
+printf '\n[creping]\nyankee_speed_m_per_s = 30\ncreping_angle_deg = 85\n' >> creped.toml
+"$fibrenet" run creped.toml --out creped --json > creped.json 2> creped.err
+[ -s creped/snapshots/creping.h5 ] || fail "missing snapshot file creping.h5"
+"$fibrenet" run creped.toml --from creped/snapshots/creping.h5 --json > retest.json 2> retest.err
+python3 - creped.json retest.json <<'PY' || fail "tests from the creping snapshot differ"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert [s["name"] for s in b["stages"]] == ["forming", "pressing", "creping", "tests"], b["stages"]
+assert "tensile_strength_N_per_m" in b["metrics"] and "crepe_frequency_per_mm" in b["metrics"]
+assert a["metrics"] == b["metrics"], "metrics differ"
+# Carried over from the snapshot, its wall time included: creping did not run again.
+assert a["stages"][2] == b["stages"][2], "creping report differs (was it run again?)"
+PY
 
 # A snapshot after pressing cannot continue a scene without pressing.
 python3 - scene.toml > unpressed.toml <<'PY'
