@@ -10,7 +10,7 @@ packages=(
   libopenmpi-dev openmpi-bin libhdf5-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-  python3 python3-matplotlib python3-numpy
+  python3 python3-matplotlib python3-numpy python3-h5py
 )
 source scripts/install_packages.sh
 install_packages "${packages[@]}"
