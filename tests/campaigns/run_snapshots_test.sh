@@ -21,6 +21,20 @@ grep -q 'Name="tensile_peak_fibre_energy_J"' full/snapshots/pressing.xdmf \
   || fail "the last snapshot lacks the tensile-peak fibre energy field"
 grep -q 'Name="fibre"' full/snapshots/forming.xdmf || fail "no fibre id in the XDMF"
 
+# The bonding-threshold study reads the pressing snapshot: at gap_tolerance 0 it counts the
+# bonds the run reported after pressing.
+# Debian's python3 (scripts/setup.sh installs python3-h5py for it).
+/usr/bin/python3 "$(dirname "${BASH_SOURCE[0]}")/../../scripts/bond_threshold_study.py" \
+  full/snapshots/pressing.h5 > thresholds.txt
+python3 - full.json thresholds.txt <<'PY' || fail "bond_threshold_study.py disagrees with the run"
+import json, sys
+pressing = json.load(open(sys.argv[1]))["stages"][1]
+assert pressing["name"] == "pressing", pressing["name"]
+row = [l.split() for l in open(sys.argv[2]) if l.split()[:1] == ["0.00"]][0]
+want = pressing["metrics"]["bonds_per_fibre"], pressing["metrics"]["bonded_pairs_per_fibre"]
+assert abs(float(row[1]) - want[0]) < 0.006 and abs(float(row[2]) - want[1]) < 0.006, (row, want)
+PY
+
 # Continue after forming: the same pressing and tensile results, bit for bit.
 "$fibrenet" run scene.toml --from full/snapshots/forming.h5 --out cont --json > cont.json 2> cont.err
 python3 - full.json cont.json <<'PY' || fail "the continued run differs from the uninterrupted one"
