@@ -4,7 +4,6 @@
 // scene (SPEC section 6). One run by default; --scaling runs the series of
 // docs/performance.md (particle counts 1e4 .. 1e6, then 1 against 2 threads at 5e4).
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -48,9 +47,10 @@ void WriteBed(const std::string& path, const bench::FibreBedSpec& bed, const Wor
   out << fmt::format("# cell {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}\n", c.lo.x(),
                      c.hi.x(), c.lo.y(), c.hi.y(), c.lo.z(), c.hi.z());
   out << fmt::format(
-      "# E {:.17g} G {:.17g} mu {:.17g} restitution {:.17g} gravity {:.17g} particles_per_fibre {}\n",
+      "# E {:.17g} G {:.17g} mu {:.17g} restitution {:.17g} gravity {:.17g} contact_C {:.17g} "
+      "contact_g {:.17g} particles_per_fibre {}\n",
       bed.E, bed.G, bed.mu, bed.restitution, bed.use_gravity ? bed.gravity : 0.0,
-      bed.particles_per_fibre);
+      w.contact.normal.C, w.contact.normal.g, bed.particles_per_fibre);
   out << "fibre,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass\n";
   const Particles& p = w.particles;
   for (std::size_t i = 0; i < p.size(); ++i)
@@ -144,7 +144,8 @@ void PrintHuman(const bench::BenchOptions& o, const bench::BenchResult& r) {
       r.bed.cell_side * 1e3, r.bed.bonds, o.bed.contacts ? "on" : "off",
       o.bed.friction ? "on" : "off", o.bed.use_gravity ? "on" : "off", o.bed.gravity,
       o.bed.gravity / 9.81, o.bed.gap * 1e6, o.bed.approach_speed,
-      o.bed.drag_coefficient > 0.0 ? "on" : "off", o.bed.maxwell_tau > 0.0 ? "on" : "off", r.dt_s, r.warmup, r.steps,
+      o.bed.drag_coefficient > 0.0 ? "on" : "off", o.bed.maxwell_tau > 0.0 ? "on" : "off",
+      r.dt_s, r.warmup, r.steps,
       r.threads, r.wall_s, r.cpu_s, r.particle_steps_per_s, r.ns_per_particle_step,
       r.contacts_per_particle, r.neighbour_pairs, r.neighbour_rebuilds,
       r.neighbour_builds_total, r.min_contact_ratio, r.peak_rss_mb,

@@ -7,33 +7,13 @@ Usage: bed_to_lammps.py BED.csv OUT.data
 Prints the -var arguments of fibre_bed.lammps for this bed on stdout: the time step of the
 bed, the harmonic bond of the fibre's axial stiffness E pi R^2 / (2R), and a Hookean contact
 of the stiffness of fibrenet's van Wyk contact at first touch (C g / (2R), 28 N/m for the
-bench's defaults C = 0.26 mN, g = 3.45) with the damping of the bed's restitution.
+bench's defaults C = 0.26 mN, g = 3.45; bed_csv.py) with the damping of the bed's
+restitution.
 """
-import csv
 import math
 import sys
 
-VAN_WYK_C = 0.26e-3  # [N], fibrenet's default contact law (van_wyk_normal.h)
-VAN_WYK_G = 3.45
-
-
-def read_bed(path):
-    header = {}
-    rows = []
-    with open(path) as f:
-        lines = [line for line in f]
-    for line in lines:
-        if not line.startswith("#"):
-            continue
-        words = line[1:].split()
-        if words and words[0] == "cell":
-            header["cell"] = [float(w) for w in words[1:7]]
-        elif words and words[0] == "E":
-            header.update({words[k]: float(words[k + 1]) for k in range(0, len(words), 2)})
-    reader = csv.DictReader(line for line in lines if not line.startswith("#"))
-    for r in reader:
-        rows.append({k: (int(v) if k == "fibre" else float(v)) for k, v in r.items()})
-    return header, rows
+from bed_csv import contact_stiffness, read_bed
 
 
 def main():
@@ -62,15 +42,13 @@ def main():
     radius, mass = rows[0]["radius"], rows[0]["mass"]
     spacing = 2.0 * radius
     k_axial = header["E"] * math.pi * radius ** 2 / spacing
-    k_contact = VAN_WYK_C * VAN_WYK_G / spacing
+    k_contact = contact_stiffness(header, radius)
     # Linear spring-dashpot with restitution e: damping ratio -ln e / sqrt(pi^2 + ln^2 e);
     # LAMMPS takes the damping per unit effective mass, 2 zeta sqrt(k / m_eff).
     log_e = math.log(header["restitution"])
     zeta = -log_e / math.sqrt(math.pi ** 2 + log_e ** 2)
     gamma_n = 2.0 * zeta * math.sqrt(k_contact / (0.5 * mass))
-    with open(sys.argv[1]) as f:
-        dt = float(f.readline().split("dt")[1].split()[0])
-    print(f"-var data {sys.argv[2]} -var dt {dt!r} -var kn {k_contact!r} -var gn {gamma_n!r} "
+    print(f"-var data {sys.argv[2]} -var dt {header['dt']!r} -var kn {k_contact!r} -var gn {gamma_n!r} "
           f"-var kbond {0.5 * k_axial!r} -var r0 {spacing!r} -var g {header['gravity']!r} "
           f"-var mu {header['mu']!r}")
 

@@ -22,10 +22,8 @@ Runs 20 untimed steps, then times STEPS steps of the step loop; writes no files.
 
 Usage: mpirun --allow-run-as-root -np 2 esysparticle scripts/compare/esys_fibre_bed.py BED.csv STEPS
 """
-import csv
 import math
 import os
-import re
 import sys
 import time
 
@@ -34,25 +32,15 @@ from esys.lsm import (GravityPrms, LsmMpi, NRotElasticWallPrms, RotBondPrms, Rot
 from esys.lsm.geometry import TaggedIdConnection
 from esys.lsm.util import BoundingBox, Vec3
 
-VAN_WYK_C, VAN_WYK_G = 0.00026, 3.45  # fibrenet's default normal law (van_wyk_normal.h)
-
-
-def read_bed(path):
-    with open(path) as f:
-        lines = f.read().splitlines()
-    comments = " ".join(line[1:] for line in lines if line.startswith("#"))
-    words = comments.split()
-    prm = {k: float(words[words.index(k) + 1]) for k in ("E", "G", "mu", "gravity")}
-    prm["dt"] = float(re.search(r"dt (\S+) s", comments).group(1))
-    cell = [float(w) for w in words[words.index("cell") + 1:words.index("cell") + 7]]
-    rows = list(csv.DictReader(line for line in lines if not line.startswith("#")))
-    return prm, cell, [{k: float(v) for k, v in r.items()} for r in rows]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bed_csv import contact_stiffness, read_bed  # noqa: E402 (after the path is set)
 
 
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
-    prm, (xlo, xhi, ylo, yhi, zlo, zhi), rows = read_bed(sys.argv[1])
+    prm, rows = read_bed(sys.argv[1])
+    xlo, xhi, ylo, yhi, zlo, zhi = prm["cell"]
     steps = int(sys.argv[2])
     n = len(rows)
     R = rows[0]["radius"]
@@ -95,7 +83,7 @@ def main():
         name="bonds", normalK=E * A / L, shearK=12.0 * E * I / L ** 3, torsionK=G * 2.0 * I / L,
         bendingK=E * I / L, normalBrkForce=never, shearBrkForce=never, torsionBrkForce=never,
         bendingBrkForce=never, tag=0, scaling=False))
-    kn = VAN_WYK_C * VAN_WYK_G / L
+    kn = contact_stiffness(prm, R)
     # scaling=False: normalK and shearK are spring constants [N/m]. rigid=False: the
     # rigid-rotation variant has an absolute slip threshold (1e-8) meant for unit-size models.
     sim.createInteractionGroup(RotFrictionPrms(

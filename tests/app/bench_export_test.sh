@@ -22,6 +22,7 @@ assert physics["maxwell_tau_s"] > 0, physics
 lines = open(sys.argv[2]).read().splitlines()
 header = [l for l in lines if l.startswith("#")]
 assert len(header) == 3 and "dt" in header[0] and header[1].startswith("# cell"), header
+assert "contact_C" in header[2] and "contact_g" in header[2], header[2]
 rows = list(csv.DictReader(l for l in lines if not l.startswith("#")))
 assert len(rows) == d["particles"] == 400, (len(rows), d["particles"])
 fibres = [int(r["fibre"]) for r in rows]
