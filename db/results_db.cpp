@@ -5,7 +5,9 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -94,12 +96,16 @@ std::optional<std::string> provenance_text(const std::string& path,
   return provenance.dump();
 }
 
+bool is_plain_file_path(const std::string& path) {
+  return !path.empty() && path != ":memory:" && path.rfind("file:", 0) != 0;
+}
+
 // Why `path` cannot be opened in `mode`, or "" when it looks openable. SQLite itself says only
 // "unable to open database file"; this names the part of the path that is wrong, and is asked
 // before SQLite runs so that nothing is created next to a path that will be refused.
 std::string path_problem(const std::string& path, OpenMode mode) {
   namespace fs = std::filesystem;
-  if (path.empty() || path == ":memory:" || path.rfind("file:", 0) == 0) return "";
+  if (!is_plain_file_path(path)) return "";
   std::error_code ec;
   const fs::path file(path);
   const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
@@ -127,11 +133,46 @@ std::string path_problem(const std::string& path, OpenMode mode) {
   return "";
 }
 
+void remove_sqlite_files(const std::string& path) {
+  std::error_code ignored;
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
+    std::filesystem::remove(path + suffix, ignored);
+  }
+}
+
+// Creates a new results database at `path` whole: built under a private name, closed (which
+// folds its WAL into the file), then linked into place. A reader never sees the file empty (no
+// tables yet) or with its first transaction under way.
+// link() refuses to replace: if another process created `path` meanwhile, theirs is kept.
+void create_whole_file(const std::string& path) {
+  const std::string draft = path + ".new-" + std::to_string(::getpid());
+  remove_sqlite_files(draft);
+  try {
+    detail::guarded(path, "cannot create", [&] {
+      SQLite::Database db(draft, SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE, kBusyTimeoutMs);
+      prepare_for_writing(db, path);
+      // Nobody else knows the draft: let SQLite checkpoint and delete its WAL at close.
+      sqlite3_db_config(db.getHandle(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 0, nullptr);
+    });
+    if (::link(draft.c_str(), path.c_str()) != 0 && errno != EEXIST) {
+      throw DbError(detail::message(path, "cannot create", std::strerror(errno)));
+    }
+  } catch (...) {
+    remove_sqlite_files(draft);
+    throw;
+  }
+  remove_sqlite_files(draft);
+}
+
 }  // namespace
 
 ResultsDb::ResultsDb(const std::string& path, OpenMode mode) : path_(path), mode_(mode) {
   if (const std::string problem = path_problem(path_, mode); !problem.empty()) {
     throw DbError(detail::message(path_, "cannot open", problem));
+  }
+  if (mode == OpenMode::kReadWrite && is_plain_file_path(path_) &&
+      !std::filesystem::exists(path_)) {
+    create_whole_file(path_);
   }
   const int flags = mode == OpenMode::kReadOnly ? SQLite::OPEN_READONLY
                                                 : SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE;

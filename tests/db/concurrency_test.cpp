@@ -3,11 +3,13 @@
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <future>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "db/queries.h"
 #include "db/results_db.h"
@@ -18,6 +20,9 @@ namespace {
 
 using testing::TempDbPath;
 using Clock = std::chrono::steady_clock;
+
+// What a reader should set (the sqlite3 shell: .timeout 1000): see docs/database.md.
+constexpr int kReaderBusyTimeoutMs = 1000;
 
 TEST(Concurrency, SecondConnectionReadsWhileFirstHoldsAWriteTransaction) {
   TempDbPath path;
@@ -104,6 +109,49 @@ TEST(Concurrency, ClosedWriterLeavesTheDataInTheFileAndTheEmptyWalInPlace) {
     EXPECT_EQ(candidates(reader, "soft-strong").size(), 1u);
   }
   for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(copy + suffix);
+}
+
+TEST(Concurrency, ANewFileAppearsWholeToAReader) {
+  // A reader polls for each file while a writer creates it. The moment a file exists it must
+  // hold the current schema: never empty, never in its first transaction. (The reader has a
+  // busy timeout, as any reader needs: the first connection to attach to a WAL file runs
+  // SQLite's WAL recovery, which refuses other connections for that instant.)
+  constexpr int kFiles = 40;
+  TempDbPath base;
+  const auto file = [&](int i) { return base.str() + "-" + std::to_string(i) + ".db"; };
+  const int current_version = ResultsDb(":memory:").schema_version();
+  std::atomic<int> polling{-1};
+  std::thread writer([&] {
+    for (int i = 0; i < kFiles; ++i) {
+      while (polling < i) std::this_thread::yield();  // the reader is watching file i
+      ResultsDb db(file(i));
+      db.upsert_campaign("c", "spec", "h", "0.1.0", "abc");
+    }
+  });
+  std::vector<std::string> failures;
+  for (int i = 0; i < kFiles; ++i) {
+    polling = i;
+    while (!std::filesystem::exists(file(i))) std::this_thread::yield();
+    try {
+      SQLite::Database shell(file(i), SQLite::OPEN_READONLY, kReaderBusyTimeoutMs);
+      const int version = shell.execAndGet("PRAGMA user_version").getInt();
+      if (version != current_version) {
+        failures.push_back(file(i) + ": schema version " + std::to_string(version));
+      }
+    } catch (const SQLite::Exception& e) {
+      failures.push_back(file(i) + ": " + e.what());
+    }
+  }
+  writer.join();
+  EXPECT_TRUE(failures.empty()) << failures.front();
+  // Each file was built under a private name, now gone.
+  const std::filesystem::path folder = std::filesystem::path(base.str()).parent_path();
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    EXPECT_EQ(entry.path().string().find(base.str() + "-0.db.new-"), std::string::npos);
+  }
+  for (int i = 0; i < kFiles; ++i) {
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(file(i) + suffix);
+  }
 }
 
 }  // namespace
