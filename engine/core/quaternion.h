@@ -7,22 +7,32 @@
 
 namespace fibrenet {
 
+// Below this squared angle [rad^2] the rotation-vector and Jacobian helpers use Taylor series
+// (0.2 rad): a bond's relative rotation almost always lies below it, and the series, exact to
+// rounding there, spare the square root, atan2, sin and cos of the closed forms.
+inline constexpr double kBondSeriesAngle2 = 0.04;
+
 // Rotation vector (axis * angle, radians) of a unit quaternion, angle in [0, pi].
 inline Vec3 RotationVector(const Quat& q) {
   // Take the shorter way round: q and -q are the same rotation.
   const double sign = q.w() < 0.0 ? -1.0 : 1.0;
   const Vec3 v = sign * q.vec();
-  const double s = v.norm();
-  if (s < 1e-12) return 2.0 * v;  // small-angle limit, exact to O(angle^3)
   const double w = sign * q.w();
-  if (s < 1e-3 * w) {
-    // angle = 2 atan(t), t = s / w < 1e-3: the series to t^5 is exact to round-off (the next
-    // term is t^7 / 7 < 1e-21 t) and spares the atan2 call, for bonds run once per step.
-    const double t = s / w, t2 = t * t;
-    return v * ((2.0 / w) * (1.0 - t2 * (1.0 / 3.0 - t2 * 0.2)));
+  const double s2 = v.squaredNorm();
+  // angle = 2 atan(t), t = |v| / w. Below t = 0.1 (0.2 rad) the series of atan(t) / t to t^14
+  // is exact to rounding: the first term left out, t^16 / 17, is below 6e-18.
+  if (s2 < 0.25 * kBondSeriesAngle2 * w * w) {
+    const double t2 = s2 / (w * w);
+    const double atan_t_over_t =
+        1.0 - t2 * (1.0 / 3.0 -
+                    t2 * (1.0 / 5.0 -
+                          t2 * (1.0 / 7.0 -
+                                t2 * (1.0 / 9.0 -
+                                      t2 * (1.0 / 11.0 - t2 * (1.0 / 13.0 - t2 / 15.0))))));
+    return v * ((2.0 / w) * atan_t_over_t);
   }
-  const double angle = 2.0 * std::atan2(s, w);
-  return v * (angle / s);
+  const double s = std::sqrt(s2);
+  return v * (2.0 * std::atan2(s, w) / s);
 }
 
 // Below this squared rotation angle [rad^2] QuatFromRotationVector uses its series.
@@ -65,42 +75,73 @@ inline Quat FrameAlongAxis(const Vec3& axis) {
 // Left Jacobian of SO(3) at the rotation vector phi: exp(phi + delta) = exp(J_l(phi) delta)
 // exp(phi) to first order in delta. Its inverse maps a small world-side rotation gamma onto
 // the change of the rotation vector: log(exp(gamma) exp(phi)) = phi + J_l^-1(phi) gamma.
-// Series below 1e-3 rad, where the closed forms lose digits.
-inline Mat3 LeftJacobian(const Vec3& phi) {
-  const double a = phi.norm(), a2 = a * a;
+// With K the cross-product matrix of phi (K v = phi x v) and a = |phi|:
+//   J_l = I + c1 K + c2 K^2,  c1 = (1 - cos a) / a^2,  c2 = (a - sin a) / a^3;
+//   J_l^-1 = I - K / 2 + c K^2,  c = 1 / a^2 - cot(a / 2) / (2 a).
+struct LeftJacobianCoefficients {
+  double c1, c2;
+};
+
+// c1 and c2 at a2 = |phi|^2. Below kBondSeriesAngle2 their series to a^10 are exact to
+// rounding (the terms left out are below 1e-19), where the closed forms lose digits.
+inline LeftJacobianCoefficients LeftJacobianCoefficientsAt(double a2) {
+  if (a2 < kBondSeriesAngle2) {
+    return {0.5 - a2 * (1.0 / 24.0 -
+                        a2 * (1.0 / 720.0 -
+                              a2 * (1.0 / 40320.0 - a2 * (1.0 / 3628800.0 - a2 / 479001600.0)))),
+            1.0 / 6.0 - a2 * (1.0 / 120.0 -
+                              a2 * (1.0 / 5040.0 -
+                                    a2 * (1.0 / 362880.0 -
+                                          a2 * (1.0 / 39916800.0 - a2 / 6227020800.0))))};
+  }
+  const double a = std::sqrt(a2);
+  return {(1.0 - std::cos(a)) / a2, (a - std::sin(a)) / (a2 * a)};
+}
+
+// c at a2 = |phi|^2; below kBondSeriesAngle2 its series to a^10 (the next term is below 1e-19).
+inline double InverseLeftJacobianCoefficientAt(double a2) {
+  if (a2 < kBondSeriesAngle2) {
+    return 1.0 / 12.0 +
+           a2 * (1.0 / 720.0 +
+                 a2 * (1.0 / 30240.0 +
+                       a2 * (1.0 / 1209600.0 + a2 * (1.0 / 47900160.0 +
+                                                     a2 * (691.0 / 1307674368000.0)))));
+  }
+  const double a = std::sqrt(a2);
+  return 1.0 / a2 - std::cos(0.5 * a) / (2.0 * a * std::sin(0.5 * a));
+}
+
+inline Mat3 CrossProductMatrix(const Vec3& phi) {
   Mat3 K;
   K << 0.0, -phi.z(), phi.y(), phi.z(), 0.0, -phi.x(), -phi.y(), phi.x(), 0.0;
-  const double c1 = a < 1e-3 ? 0.5 - a2 / 24.0 : (1.0 - std::cos(a)) / a2;
-  const double c2 = a < 1e-3 ? 1.0 / 6.0 - a2 / 120.0 : (a - std::sin(a)) / (a2 * a);
-  return Mat3::Identity() + c1 * K + c2 * K * K;
+  return K;
+}
+
+inline Mat3 LeftJacobian(const Vec3& phi) {
+  const Mat3 K = CrossProductMatrix(phi);
+  const LeftJacobianCoefficients c = LeftJacobianCoefficientsAt(phi.squaredNorm());
+  return Mat3::Identity() + c.c1 * K + c.c2 * K * K;
 }
 
 inline Mat3 InverseLeftJacobian(const Vec3& phi) {
-  const double a = phi.norm(), a2 = a * a;
-  Mat3 K;
-  K << 0.0, -phi.z(), phi.y(), phi.z(), 0.0, -phi.x(), -phi.y(), phi.x(), 0.0;
-  const double c2 = a < 1e-3 ? 1.0 / 12.0 + a2 / 720.0
-                             : 1.0 / a2 - std::cos(0.5 * a) / (2.0 * a * std::sin(0.5 * a));
-  return Mat3::Identity() - 0.5 * K + c2 * K * K;
+  const Mat3 K = CrossProductMatrix(phi);
+  return Mat3::Identity() - 0.5 * K + InverseLeftJacobianCoefficientAt(phi.squaredNorm()) * K * K;
 }
 
 // The same Jacobians applied transposed to a vector, without forming a matrix (the bond's
-// hot path): with K v = phi x v, K^T = -K and (K K)^T = K K, so
-//   J_l^T v = v - c1 phi x v + c2 phi x (phi x v),  J_l^-T v = v + phi x v / 2 + c2' phi x (phi x v).
-inline Vec3 LeftJacobianTransposeTimes(const Vec3& phi, const Vec3& v) {
-  const double a = phi.norm(), a2 = a * a;
-  const double c1 = a < 1e-3 ? 0.5 - a2 / 24.0 : (1.0 - std::cos(a)) / a2;
-  const double c2 = a < 1e-3 ? 1.0 / 6.0 - a2 / 120.0 : (a - std::sin(a)) / (a2 * a);
+// hot path): K^T = -K and (K K)^T = K K, so
+//   J_l^T v = v - c1 phi x v + c2 phi x (phi x v),  J_l^-T v = v + phi x v / 2 + c phi x (phi x v).
+// The coefficients come from the functions above, so that a caller applying one Jacobian
+// twice computes them once.
+inline Vec3 LeftJacobianTransposeTimes(const Vec3& phi, const LeftJacobianCoefficients& c,
+                                       const Vec3& v) {
   const Vec3 pv = phi.cross(v);
-  return v - c1 * pv + c2 * phi.cross(pv);
+  return v - c.c1 * pv + c.c2 * phi.cross(pv);
 }
 
-inline Vec3 InverseLeftJacobianTransposeTimes(const Vec3& phi, const Vec3& v) {
-  const double a = phi.norm(), a2 = a * a;
-  const double c2 = a < 1e-3 ? 1.0 / 12.0 + a2 / 720.0
-                             : 1.0 / a2 - std::cos(0.5 * a) / (2.0 * a * std::sin(0.5 * a));
+inline Vec3 InverseLeftJacobianTransposeTimes(const Vec3& phi, double c, const Vec3& v) {
   const Vec3 pv = phi.cross(v);
-  return v + 0.5 * pv + c2 * phi.cross(pv);
+  return v + 0.5 * pv + c * phi.cross(pv);
 }
 
 }  // namespace fibrenet

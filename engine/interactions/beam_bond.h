@@ -192,7 +192,9 @@ inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, B
   // The products are taken with vectors, right to left, never forming P or A P^T A^T.
   const Mat3 A = B_i.toRotationMatrix();
   Vec3 f_i = R_m * f_local;
-  const Vec3 m_world = A * InverseLeftJacobianTransposeTimes(theta, m_local);
+  const double theta2 = theta.squaredNorm();
+  const double c_inverse = InverseLeftJacobianCoefficientAt(theta2);
+  const Vec3 m_world = A * InverseLeftJacobianTransposeTimes(theta, c_inverse, m_local);
   Vec3 couple = Vec3::Zero();
 
   if (p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0) {
@@ -211,9 +213,13 @@ inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, B
   // The force pair f_i, -f_i is offset by d: its moment is shared so that angular momentum
   // is conserved exactly (see above; damping forces share it the same way).
   const Vec3 moment = g.d.cross(f_i);
+  const Vec3 half_theta = 0.5 * theta;
   const Vec3 moment_j =
       A * (0.5 * InverseLeftJacobianTransposeTimes(
-                     theta, LeftJacobianTransposeTimes(0.5 * theta, A.transpose() * moment)));
+                     theta, c_inverse,
+                     LeftJacobianTransposeTimes(half_theta,
+                                                LeftJacobianCoefficientsAt(0.25 * theta2),
+                                                A.transpose() * moment)));
   r.force_i = f_i;
   r.torque_i = m_world + couple + (moment - moment_j);
   r.torque_j = -m_world - couple + moment_j;
