@@ -4,12 +4,12 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
 
 #include "engine/core/error.h"
+#include "engine/core/stopwatch.h"
 #include "optimizer/task_codec.h"
 
 #if FIBRENET_WITH_MPI
@@ -191,7 +191,7 @@ class MpiScheduler : public Scheduler {
 TaskResult ExecuteTask(const EvaluateFn& evaluate, const Task& task, std::size_t index) {
   TaskResult out;
   out.index = index;
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   try {
     out.result = evaluate(task.design, task.fidelity, task.seed);
   } catch (const RunError& e) {
@@ -199,7 +199,7 @@ TaskResult ExecuteTask(const EvaluateFn& evaluate, const Task& task, std::size_t
     out.result.ok = false;
     out.result.reason = e.what();
   }
-  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.wall_s = clock.Seconds();
   EvaluationResult& r = out.result;
   if (!r.ok) {
     if (r.reason.empty()) r.reason = "evaluation failed (the evaluator gave no reason)";

@@ -2,7 +2,6 @@
 
 #include <sys/resource.h>
 
-#include <chrono>
 #include <fstream>
 #include <string>
 
@@ -12,14 +11,11 @@
 #include "engine/core/error.h"
 #include "engine/core/parallel.h"
 #include "engine/core/simulation.h"
+#include "engine/core/stopwatch.h"
 
 namespace fibrenet::bench {
 
 namespace {
-
-double Seconds(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
-  return std::chrono::duration<double>(b - a).count();
-}
 
 // User plus system CPU time of the process, all threads [s].
 double CpuSeconds() {
@@ -61,31 +57,27 @@ bool ResetPeakRss() {
 BenchResult RunFibreBedBench(const BenchOptions& options) {
   if (std::string m = options.Validate(); !m.empty()) throw InputError("bench: " + m);
   if (options.threads > 0) SetThreadCount(options.threads);
-  using Clock = std::chrono::steady_clock;
   BenchResult r;
   r.threads = ThreadCount();
   r.steps = options.steps;
   r.warmup = options.warmup;
 
-  const auto t0 = Clock::now();
+  Stopwatch clock;
   World w;
   r.bed = BuildFibreBed(options.bed, w);
   Simulation sim(w);
   sim.Prepare();
   r.dt_s = w.settings.dt;
-  const auto t1 = Clock::now();
+  r.build_s = clock.Restart();
   sim.Run(options.warmup);
   if (options.after_warmup) options.after_warmup(w);
-  const auto t2 = Clock::now();
+  r.warmup_s = clock.Restart();
   const std::size_t builds_before = w.neighbours.builds();
   const double cpu_before = CpuSeconds();
   sim.Run(options.steps);
-  const auto t3 = Clock::now();
+  r.wall_s = clock.Seconds();
   r.cpu_s = CpuSeconds() - cpu_before;
 
-  r.build_s = Seconds(t0, t1);
-  r.warmup_s = Seconds(t1, t2);
-  r.wall_s = Seconds(t2, t3);
   const double particle_steps = static_cast<double>(r.bed.particles) * options.steps;
   r.particle_steps_per_s = particle_steps / r.wall_s;
   r.ns_per_particle_step = 1e9 * r.wall_s / particle_steps;

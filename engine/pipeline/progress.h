@@ -2,12 +2,12 @@
 // callback (the CLI prints to stderr); the engine itself never prints.
 #pragma once
 
-#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <string>
 
 #include "engine/core/simulation.h"
+#include "engine/core/stopwatch.h"
 
 namespace fibrenet::pipeline {
 
@@ -26,17 +26,5 @@ struct Progress {
 std::int64_t RunUntil(Simulation& sim, std::int64_t max_steps, std::int64_t check_every,
                       const std::function<bool()>& done, const std::function<std::string()>& status,
                       const Progress& progress);
-
-// Wall-clock stopwatch in seconds.
-class Stopwatch {
- public:
-  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
-  double Seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_;
-};
 
 }  // namespace fibrenet::pipeline

@@ -69,7 +69,7 @@ double LoadedEndResponse(const ChainSpec& spec, double safety, Load load, double
 std::vector<CaseResult> RunCase(const char* name, Load load) {
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
-    const beam::Stopwatch clock;
+    const Stopwatch clock;
     ChainSpec spec = beam::PaperFibre(f.particles);
     spec.inertia_scale = beam::kStaticInertiaScale;
     const double L = spec.length;

@@ -6,13 +6,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
 
 #include "engine/core/simulation.h"
+#include "engine/core/stopwatch.h"
 #include "engine/validation/beam_chain.h"
 
 namespace fibrenet::validation::beam {
@@ -41,16 +41,6 @@ constexpr double kStaticInertiaScale = 4.0;
 inline std::string FidelityLabel(int particles, double safety, bool is_default) {
   return fmt::format("n={} safety={}{}", particles, safety, is_default ? " (default)" : "");
 }
-
-class Stopwatch {
- public:
-  double Seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
 
 // A world holding one paper fibre in an isolated cell, with applied loads switched on
 // (all zero) and the given time-step safety factor. Call Simulation::Prepare after fixing

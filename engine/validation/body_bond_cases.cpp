@@ -21,7 +21,6 @@
 // the bond; the tolerance is one load increment. A compression + shear path checks that
 // compression does not contribute (counting |f_r| would break it a third early).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -29,15 +28,12 @@
 #include "engine/core/energy.h"
 #include "engine/core/quaternion.h"
 #include "engine/core/simulation.h"
+#include "engine/core/stopwatch.h"
 #include "engine/validation/cases.h"
 
 namespace fibrenet::validation {
 
 namespace {
-
-double Seconds(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 constexpr double kR = 16e-6;               // [m]
 constexpr double kL = 32e-6;               // bond length: touching spheres [m]
@@ -54,7 +50,7 @@ Cell OpenBox(double half_width) {
 // --- drag_terminal_velocity -----------------------------------------------------------
 
 CaseResult DragAt(double safety, bool is_default) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   const double m = kMassPerLength * 2.0 * kR;
   World w;
   w.cell = OpenBox(1.0);
@@ -85,7 +81,7 @@ CaseResult DragAt(double safety, bool is_default) {
   r.is_default = is_default;
   r.error = (w.particles.v[0] - terminal).norm() / terminal.norm();
   r.tolerance = 1e-6;
-  r.wall_s = Seconds(start);
+  r.wall_s = clock.Seconds();
   r.detail = fmt::format(
       "v = ({:.4e}, {:.4e}, {:.4e}) m/s vs u + m g / c = ({:.4e}, {:.4e}, {:.4e}) after {} "
       "steps (40 m/c); largest deviation from the exact transient {:.1e} of |v_terminal|",
@@ -155,7 +151,7 @@ Relaxation Relax(double safety, double ramp) {
 }
 
 CaseResult MaxwellAt(double safety, bool is_default) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   const Relaxation step = Relax(safety, 0.0);
   const Relaxation ramp = Relax(safety, 2e-6);
   CaseResult r;
@@ -166,7 +162,7 @@ CaseResult MaxwellAt(double safety, bool is_default) {
   // The step-and-hold history is integrated exactly; the ramp lags by half a step,
   // O(dt / tau) = 1e-3 at the default.
   r.tolerance = 0.01;
-  r.wall_s = Seconds(start);
+  r.wall_s = clock.Seconds();
   r.detail = fmt::format(
       "max |F - F_ref| / F0 over 5 tau: step-and-hold vs F0 exp(-t/tau) {:.1e}, ramp-and-hold "
       "{:.1e}; strain + dissipated energy while held vs its start {:.1e} (step), {:.1e} (ramp)",
@@ -244,7 +240,7 @@ Break LoadToFailure(const LoadPath& path, const BeamBondParams& params, int incr
 }
 
 CaseResult HillAt(int increments, bool is_default) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   // Fibre-fibre bond stiffness from transverse moduli (1 GPa, 0.4 GPa) over one diameter.
   BeamBondParams k = BeamBondParams::FromBeam(1e9, 0.4e9, kR, kL);
   k.failure = BondFailure::kHill;
@@ -280,7 +276,7 @@ CaseResult HillAt(int increments, bool is_default) {
   r.is_default = is_default;
   r.error = worst;
   r.tolerance = 1.0 / (increments - 0.3);  // one load increment, relative to s*
-  r.wall_s = Seconds(start);
+  r.wall_s = clock.Seconds();
   r.detail = detail;
   return Finish(r);
 }

@@ -146,7 +146,7 @@ CaseResult Result(const char* name, const Fidelity& f) {
 std::vector<CaseResult> EulerBuckling() {
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
-    const beam::Stopwatch clock;
+    const Stopwatch clock;
     const ChainSpec spec = beam::PaperFibre(f.particles);
     const double EI = spec.E * beam::SecondMoment(spec), L = spec.length;
     const double reference = kPi * kPi * EI / (L * L);
@@ -175,7 +175,7 @@ std::vector<CaseResult> EulerBuckling() {
 std::vector<CaseResult> BendingFrequency() {
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
-    const beam::Stopwatch clock;
+    const Stopwatch clock;
     const ChainSpec spec = beam::PaperFibre(f.particles);
     const double EI = spec.E * beam::SecondMoment(spec), L = spec.length;
     const double reference =

@@ -86,7 +86,7 @@ std::string RelaxNote(const beam::Relaxation& r) {
 std::vector<CaseResult> CantileverSmall() {
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
-    const beam::Stopwatch clock;
+    const Stopwatch clock;
     ChainSpec spec = beam::PaperFibre(f.particles);
     spec.inertia_scale = beam::kStaticInertiaScale;
     const Tip tip = LoadedCantilever(spec, f.safety, kSmallAlpha);
@@ -110,7 +110,7 @@ std::vector<CaseResult> CantileverSmall() {
 std::vector<CaseResult> CantileverElastica() {
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
-    const beam::Stopwatch clock;
+    const Stopwatch clock;
     ChainSpec spec = beam::PaperFibre(f.particles);
     spec.inertia_scale = beam::kStaticInertiaScale;
     const double L = spec.length;

@@ -18,22 +18,18 @@
 // (error: distance slid over the distance a frictionless block would slide) and slide with
 // a = g (sin theta - mu cos theta) above (error: relative error of the acceleration).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "engine/core/energy.h"
 #include "engine/core/simulation.h"
+#include "engine/core/stopwatch.h"
 #include "engine/validation/cases.h"
 
 namespace fibrenet::validation {
 
 namespace {
-
-double Seconds(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 constexpr double kMassPerLength = 2.5e-7;  // [kg/m]; a sphere stands for 2 R of fibre
 
@@ -63,7 +59,7 @@ double ReferenceForce(double d, double sum, const VanWykParams& p) {
 }
 
 CaseResult Compression(int increments, bool is_default) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   constexpr double kRi = 16e-6, kRj = 12e-6, kSum = kRi + kRj;
   constexpr double kEnd = 0.3 * kSum;
   World w;
@@ -115,7 +111,7 @@ CaseResult Compression(int increments, bool is_default) {
   // Eq. 4 itself is met to round-off; the energy check carries the error of Simpson's rule
   // over the increments (O(h^3) where the stiff branch's curvature jumps).
   r.tolerance = 1e-3;
-  r.wall_s = Seconds(start);
+  r.wall_s = clock.Seconds();
   r.detail = fmt::format(
       "force vs Eq. 4 (d/(R_i+R_j) in [{:.1f}, 1.02]) {:.1e}; vs stiff branch (tangent below "
       "d_lin = {:.1f} (R_i+R_j), F(d_lin) = {:.3g} N) {:.1e}; strain energy vs work integral "
@@ -157,7 +153,7 @@ double Rebound(double e, double speed, double safety) {
 }
 
 CaseResult RestitutionAt(double safety, bool is_default) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   double worst = 0.0;
   std::string gentle, fast;
   for (double e : {0.5, 0.8, 0.95}) {
@@ -178,7 +174,7 @@ CaseResult RestitutionAt(double safety, bool is_default) {
   // safety 0.5 (some 40 steps per contact), halving with dt; at 3 m/s the stiffening law
   // takes up to 0.6% more.
   r.tolerance = 0.03;
-  r.wall_s = Seconds(start);
+  r.wall_s = clock.Seconds();
   r.detail = fmt::format("measured e at 0.1, 1, 3 m/s: {}; e=0.5 at 10, 30 m/s (stiffening "
                          "law, not in error):{}",
                          gentle, fast);
@@ -238,7 +234,7 @@ Incline Slide(double theta_deg, double safety, double duration) {
 }
 
 CaseResult FrictionAt(double safety, bool is_default) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   constexpr double kDuration = 1.5e-4;  // [s], some 10^4 steps
   constexpr double kMu = 0.3;
   double worst = 0.0;
@@ -266,7 +262,7 @@ CaseResult FrictionAt(double safety, bool is_default) {
   r.is_default = is_default;
   r.error = worst;
   r.tolerance = 0.01;  // the figure for friction
-  r.wall_s = Seconds(start);
+  r.wall_s = clock.Seconds();
   detail.resize(detail.size() - 2);
   r.detail = detail;
   return Finish(r);

@@ -20,7 +20,6 @@
 // max |L - L0| / |L0| and the drift of the mean leapfrog energy between the first and the
 // last tenth of the run, relative to the initial energy.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -32,15 +31,12 @@
 #include "engine/core/energy.h"
 #include "engine/core/quaternion.h"
 #include "engine/core/simulation.h"
+#include "engine/core/stopwatch.h"
 #include "engine/validation/cases.h"
 
 namespace fibrenet::validation {
 
 namespace {
-
-double Seconds(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 constexpr double kRadius = 16e-6;          // [m]
 constexpr double kLength = 1e-3;           // fibre contour length [m]
@@ -248,7 +244,7 @@ DynamicResult DynamicRigidMotion(const Fidelity& f) {
 std::vector<CaseResult> RigidMotion() {
   std::vector<CaseResult> results;
   for (const Fidelity& f : kFidelities) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch clock;
     const double kinematic = KinematicRigidMotion(f);
     const DynamicResult dynamic = DynamicRigidMotion(f);
     CaseResult r;
@@ -259,7 +255,7 @@ std::vector<CaseResult> RigidMotion() {
     // A spurious strain of 1e-9: round-off is near 1e-14; the spin run also carries the
     // vibration that the centripetal load excites, bounded by that load.
     r.tolerance = std::max(1e-9, 2.0 * dynamic.centripetal);
-    r.wall_s = Seconds(start);
+    r.wall_s = clock.Seconds();
     r.detail = fmt::format(
         "max internal load / (k_n L): rigid poses to 180 deg {:.2e}; translating across {} "
         "periodic faces {:.2e}; spinning half a turn {:.2e} beyond the centripetal {:.2e}",
@@ -275,7 +271,7 @@ std::vector<CaseResult> Conservation() {
   std::vector<CaseResult> results;
   const Fidelity fidelities[] = {{21, 0.5, false}, {21, 0.25, true}, {21, 0.1, false}};
   for (const Fidelity& f : fidelities) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch clock;
     World w;
     w.cell.lo = Vec3::Constant(-2e-3);
     w.cell.hi = Vec3::Constant(3e-3);
@@ -338,7 +334,7 @@ std::vector<CaseResult> Conservation() {
     // modified energy is exchanged between modes at O((omega dt)^2) (about 4e-6 here): it is
     // given 1e-5 there.
     r.tolerance = f.safety > 0.3 ? 1e-5 : 1e-6;
-    r.wall_s = Seconds(start);
+    r.wall_s = clock.Seconds();
     r.detail = fmt::format(
         "{} steps, n={}: |dL|/|L0| = {:.1e}; leapfrog energy, mean of last vs first tenth: "
         "{:.1e} of E0 = {:.3e} J (end-of-step energy: peak to peak {:.1e}, mean drift {:.1e})",
