@@ -107,6 +107,12 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
     if (placed.overlapping_fibres > 0)
       stage.warnings.push_back(fmt::format("{} fibres were placed overlapping others",
                                            placed.overlapping_fibres));
+    if (spec.sheet.particle_spacing > 1.0)
+      stage.warnings.push_back(fmt::format(
+          "particle spacing {} diameters > 1: a crossing fibre can pass between a fibre's "
+          "particles, so contacts and bonds are missed (docs/performance.md, speed against "
+          "error); use it only where fibre-fibre contact does not matter",
+          spec.sheet.particle_spacing));
     stage.metrics = Measure(report.network, spec.metrics);
     stage.wall_s = clock.Seconds();
     report.stages.push_back(std::move(stage));

@@ -1,5 +1,6 @@
 // Scene files: the example scenes load; errors name file, key and accepted range;
 // overrides by dotted path work and reject unknown paths.
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -36,6 +37,16 @@ std::string InputErrorOf(F f) {
     return e.what();
   }
   return "";
+}
+
+TEST(SceneFile, EverySceneInTheFolderLoadsAndValidates) {
+  int scenes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kScenes)) {
+    if (entry.path().extension() != ".toml") continue;
+    EXPECT_EQ(LoadScene(entry.path().string()).Validate(), "") << entry.path();
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 8);
 }
 
 TEST(SceneFile, ExampleScenesLoad) {

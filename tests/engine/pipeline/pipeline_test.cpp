@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <map>
+#include <string>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -73,6 +74,23 @@ TEST(Pipeline, PressingReachesTheTargetThicknessAfterSpringback) {
   EXPECT_GT(pressing.metrics.bonds_per_fibre, 0.5);
   EXPECT_NEAR(pressing.metrics.basis_weight_gsm, r.stages[0].metrics.basis_weight_gsm, 1e-9);
   EXPECT_LT(pressing.metrics.thickness_um, r.stages[0].metrics.thickness_um);
+}
+
+TEST(Pipeline, ParticleSpacingAboveOneDiameterIsWarnedAbout) {
+  // Gaps between a fibre's particles let crossing fibres through: forming says so.
+  const auto spacing_warnings = [](const StageReport& forming) {
+    int n = 0;
+    for (const std::string& w : forming.warnings)
+      n += w.find("particle spacing") != std::string::npos ? 1 : 0;
+    return n;
+  };
+  EXPECT_EQ(spacing_warnings(RunTiny(7, false).stages.at(0)), 0);
+  PipelineSpec spec = TinySpec(7);
+  spec.pressing.reset();
+  spec.sheet.particle_spacing = 2.0;
+  spec.forming.max_steps = 100;  // the warning is about the setting, not the outcome
+  const PipelineReport coarse = RunPipeline(spec, Progress{});
+  EXPECT_EQ(spacing_warnings(coarse.stages.at(0)), 1);
 }
 
 }  // namespace
