@@ -27,7 +27,7 @@ SHORT = {"thickness_um": "thickness", "bonds_per_fibre": "bonds/fibre",
 # The ZD compliance comes from a compression that is not quasi-static (docs/virtual-tests.md):
 # it is shown, but the choice of the default leaves it out.
 DECIDING = METRICS[:4]
-# factor: (scene key, [(run name, value)], reference run name, default run name)
+# (factor label, [(run name, value)], reference run name); the defaults run is "default".
 FACTORS = [
     ("particle spacing [diameters]", [("spacing_0.5", 0.5), ("default", 1.0), ("spacing_2", 2.0)],
      "spacing_0.5"),
