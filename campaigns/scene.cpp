@@ -339,6 +339,7 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
   spec.sheet.particle_spacing = fidelity.Number("particle_spacing_diameters", 1.0, Closed(0.25, 10), "diameters");
   spec.sheet.inertia_scale = fidelity.Number("inertia_scale", 1.0, Closed(1, 1e6), "");
   spec.sheet.time_step_safety = fidelity.Number("time_step_safety", 0.5, OpenClosed(0, 1), "of dt_crit");
+  spec.sheet.neighbour_skin = fidelity.Number("neighbour_skin_radii", 0.5, OpenClosed(0, 5), "particle radii");
   fidelity.Finish();
 
   TableReader fibres(root.Table("fibres"), "fibres", ctx);

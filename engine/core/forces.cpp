@@ -63,7 +63,7 @@ void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses
   double damping = 0.0, slip = 0.0, min_ratio = 1.0;
 #pragma omp parallel reduction(+ : damping, slip) reduction(min : min_ratio)
   for (int range = ThreadId(); range < buffers.Ranges(); range += TeamSize()) {
-    // Rows of this range: the owner i is always in it, the partner j > i mostly.
+    // Rows of this range: the owner i is always in it, the partner j anywhere.
     ForceBuffers::Writer out = buffers.WriterFor(range);
     const auto [first, last] = buffers.ParticleRange(range);
     for (std::int64_t i = first; i < last; ++i) {

@@ -18,6 +18,13 @@ struct Grid {
   int Count() const { return nx * ny * nz; }
 };
 
+// Whether row `owner` holds the pair {owner, partner}: the parity rule of neighbour_list.h.
+// The plain "lower index" rule would give the rows of the first half of the particles 3/4
+// of the pairs when particles are not ordered in space (fibres placed at random).
+bool RowHolds(std::int64_t owner, std::int64_t partner) {
+  return ((owner + partner) & 1) == 0 ? owner < partner : owner > partner;
+}
+
 int ClampCell(double t, int n) {
   const int c = static_cast<int>(std::floor(t));
   return std::min(std::max(c, 0), n - 1);
@@ -127,7 +134,7 @@ void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bon
     for (int k = 0; k < count; ++k) {
       for (int m = cell_start_[cells[k]]; m < cell_start_[cells[k] + 1]; ++m) {
         const std::int32_t j = cell_members_[m];
-        if (j <= static_cast<std::int32_t>(i)) continue;
+        if (!RowHolds(static_cast<std::int64_t>(i), j)) continue;
         const double reach = p.radius[i] + p.radius[j] + skin;
         if (cell.Delta(p.x[i], p.x[j]).squaredNorm() >= reach * reach) continue;
         if (Excluded(static_cast<std::int32_t>(i), j)) continue;
@@ -190,22 +197,34 @@ std::size_t NeighbourList::MemoryBytes() const {
 std::vector<PairHistory> NeighbourList::ExportHistory() const {
   std::vector<PairHistory> out;
   for (std::size_t i = 0; i + 1 < offsets_.size(); ++i)
-    for (std::size_t k = offsets_[i]; k < offsets_[i + 1]; ++k)
-      if (!history_[k].isZero(0.0))
-        out.push_back({static_cast<std::int32_t>(i), partners_[k], history_[k]});
+    for (std::size_t k = offsets_[i]; k < offsets_[i + 1]; ++k) {
+      if (history_[k].isZero(0.0)) continue;
+      const std::int32_t owner = static_cast<std::int32_t>(i), partner = partners_[k];
+      // Stored from the lower index's side: the history of the pair seen from j is -xi.
+      if (owner < partner)
+        out.push_back({owner, partner, history_[k]});
+      else
+        out.push_back({partner, owner, -history_[k]});
+    }
   return out;
 }
 
 void NeighbourList::ImportHistory(const std::vector<PairHistory>& history) {
+  const auto outside = [&](std::int32_t i) {
+    return i < 0 || static_cast<std::size_t>(i) + 1 >= offsets_.size();
+  };
   for (const PairHistory& h : history) {
-    if (h.i < 0 || static_cast<std::size_t>(h.i) + 1 >= offsets_.size())
+    if (outside(h.i) || outside(h.j) || h.i == h.j)
       throw std::invalid_argument("contact history names a particle outside the list");
-    const auto first = partners_.begin() + offsets_[h.i];
-    const auto last = partners_.begin() + offsets_[h.i + 1];
-    const auto it = std::lower_bound(first, last, h.j);
-    if (it == last || *it != h.j)
+    const bool in_row_i = RowHolds(h.i, h.j);
+    const std::int32_t owner = in_row_i ? h.i : h.j, partner = in_row_i ? h.j : h.i;
+    const auto first = partners_.begin() + offsets_[owner];
+    const auto last = partners_.begin() + offsets_[owner + 1];
+    const auto it = std::lower_bound(first, last, partner);
+    if (it == last || *it != partner)
       throw std::invalid_argument("contact history names a pair the neighbour list lacks");
-    history_[it - partners_.begin()] = h.xi;
+    // Seen from the other side of the pair, the tangential displacement changes sign.
+    history_[it - partners_.begin()] = owner < partner ? h.xi : Vec3(-h.xi);
   }
 }
 

@@ -1,6 +1,8 @@
 // Verlet neighbour list built with linked cells. Each unordered pair within
-// R_i + R_j + skin is stored once (half list, partner index > owner index), in compressed
-// rows: partners[offsets[i] .. offsets[i+1]). Bonded pairs are excluded. The list is
+// R_i + R_j + skin is stored once (half list), in compressed rows sorted by partner:
+// partners[offsets[i] .. offsets[i+1]). The pair {a < b} lies in row a when a + b is even and
+// in row b when it is odd, so that rows hold about equal shares of the pairs whatever the
+// particle order (threads split the rows by particle range). Bonded pairs are excluded. The list is
 // rebuilt when some particle has moved more than half the skin since the last build, so
 // no contact can be missed; the cost of a build is linear in the particle count.
 // Each entry carries the tangential history of its contact, carried over across rebuilds.
@@ -18,7 +20,7 @@ namespace fibrenet {
 // The tangential history of one touching pair, for snapshots.
 struct PairHistory {
   std::int32_t i = 0, j = 0;  // i < j
-  Vec3 xi = Vec3::Zero();
+  Vec3 xi = Vec3::Zero();      // as seen from i (from j it is -xi)
 };
 
 class NeighbourList {

@@ -17,7 +17,7 @@ std::string Simulation::Prepare() {
   if (w_.settings.skin <= 0.0 && p.size() > 0) {
     double r_min = p.radius[0];
     for (double r : p.radius) r_min = std::min(r_min, r);
-    w_.settings.skin = 0.5 * r_min;
+    w_.settings.skin = w_.settings.skin_radii * r_min;
   }
   if (w_.physics.applied_loads) {
     w_.applied_force.resize(p.size(), Vec3::Zero());

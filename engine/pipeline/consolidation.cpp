@@ -78,8 +78,7 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
   plate.z = TopSurface(p) + 0.5 * r_max + boss;
   plate.vz = -s.speed;
   w.walls.push_back(plate);
-  w.settings.safety = sheet.time_step_safety;
-  w.settings.dt = 0.0;
+  UseSheetStepSettings(w, sheet);
 
   Simulation sim(w);
   PressingResult result;

@@ -108,8 +108,7 @@ void RelaxCrepedSheet(Network& net, const SheetSpec& sheet, const CrepingSetting
   AddBondDamping(w, s.relax_bond_damping_ratio);
   w.physics.drag = true;
   w.physics.drag_coefficient = net.TotalMass() / double(w.particles.size()) / s.relax_damping_time;
-  w.settings.dt = 0.0;
-  w.settings.safety = sheet.time_step_safety;
+  UseSheetStepSettings(w, sheet);
   w.neighbours.Invalidate();
   Simulation sim(w);
   if (std::string warning = sim.Prepare(); !warning.empty()) out.warnings.push_back(warning);
@@ -311,8 +310,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   const Vec3 face_up = blade.face_up, face_normal = blade.face_normal;
   const Vec3 v_reel = blade.velocity + s.yankee_speed / (1.0 + s.crepe_ratio) * face_up;
 
-  w.settings.dt = 0.0;
-  w.settings.safety = sheet.time_step_safety;
+  UseSheetStepSettings(w, sheet);
   w.neighbours.Invalidate();
   Simulation sim(w);
   if (std::string warning = sim.Prepare(); !warning.empty()) out.warnings.push_back(warning);

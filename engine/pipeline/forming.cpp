@@ -58,6 +58,8 @@ std::string SheetSpec::Validate() const {
     return fmt::format("inertia_scale = {}: must lie in [1, 1e6]", inertia_scale);
   if (!(time_step_safety > 0.0 && time_step_safety <= 1.0))
     return fmt::format("time_step_safety = {}: must lie in (0, 1]", time_step_safety);
+  if (!(neighbour_skin > 0.0 && neighbour_skin <= 5.0))
+    return fmt::format("neighbour_skin = {}: must lie in (0, 5] radii", neighbour_skin);
   if (std::string why = contact.Validate(); !why.empty()) return "contact: " + why;
   return {};
 }
@@ -181,8 +183,7 @@ FormingResult Settle(Network& net, const SheetSpec& sheet, const FormingSettings
   w.physics.contacts = true;
   w.physics.friction = w.contact.mu > 0.0;
   w.walls.assign(1, Wall{});  // the forming wire at z = 0
-  w.settings.safety = sheet.time_step_safety;
-  w.settings.dt = 0.0;
+  UseSheetStepSettings(w, sheet);
 
   Simulation sim(w);
   FormingResult result;

@@ -45,10 +45,20 @@ struct SheetSpec {
   double particle_spacing = 1.0;     // fidelity: particle spacing in fibre diameters
   double inertia_scale = 1.0;        // multiplies the solid-sphere inertia of particles
   double time_step_safety = 0.5;     // dt = safety * dt_crit
+  double neighbour_skin = 0.5;       // neighbour-list skin in smallest radii (speed only)
   ContactParams contact;             // non-bonded contacts and walls
 
   std::string Validate() const;
 };
+
+// Sets a stage's time-step safety and neighbour skin from the sheet's fidelity settings;
+// the time step and the skin are then chosen afresh when the stage's simulation prepares.
+inline void UseSheetStepSettings(World& w, const SheetSpec& sheet) {
+  w.settings.safety = sheet.time_step_safety;
+  w.settings.dt = 0.0;
+  w.settings.skin_radii = sheet.neighbour_skin;
+  w.settings.skin = 0.0;
+}
 
 enum class Orientation { kIsotropic, kPlanar };
 

@@ -98,7 +98,9 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
                      {"dt_s", r.dt},
                      {"simulated_time_s", r.simulated_time},
                      {"settled", r.settled ? 1.0 : 0.0},
-                     {"kinetic_ratio", r.kinetic_ratio}};
+                     {"kinetic_ratio", r.kinetic_ratio},
+                     {"neighbour_builds",
+                      static_cast<double>(report.network.world.neighbours.builds())}};
     if (!r.dt_warning.empty()) stage.warnings.push_back(r.dt_warning);
     if (!r.settled)
       stage.warnings.push_back(fmt::format(

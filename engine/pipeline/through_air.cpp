@@ -57,8 +57,7 @@ ThroughAirResult DryThroughAir(Network& net, const SheetSpec& sheet, const Throu
   w.walls.resize(1);
   w.walls[0] = Wall{};
   w.walls[0].relief = fabric;
-  w.settings.safety = sheet.time_step_safety;
-  w.settings.dt = 0.0;
+  UseSheetStepSettings(w, sheet);
 
   Simulation sim(w);
   if (std::string warn = sim.Prepare(); !warn.empty()) result.warnings.push_back(warn);
