@@ -65,8 +65,8 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
   w.physics = Physics{};
   w.physics.contacts = true;
   w.physics.friction = w.contact.mu > 0.0;
-  // The background drag only acts while the plate rests (hold, springback): during the
-  // compression it would resist the squeeze itself.
+  // The background drag only acts while the plate approaches or rests (hold, springback):
+  // during the compression it would resist the squeeze itself.
   w.physics.drag = true;  // on for Prepare, so that the time step allows for it
   w.physics.drag_coefficient = mean_mass / s.damping_time;
   w.walls.resize(1);  // keep the wire
@@ -114,15 +114,30 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
         "pressing would take {:.3g} steps to move the plate {:.0f} um at {} m/s with dt = {:.3g} s, "
         "more than max_steps = {}: raise pressing speed or mass scaling",
         travel / (s.speed * w.settings.dt), travel * 1e6, s.speed, w.settings.dt, s.max_steps));
-  // 1a. Approach: the plate comes down fast until it first touches the web.
+  // 1a. Approach: the plate comes down fast to the web's top surface, the height the
+  // thickness measure reads (docs/network.md). Fibres standing out of the web above it (a
+  // formed web has a few, up to a fibre length high) are laid down on the way; pressing
+  // proper starts at the surface. The background drag is on: it damps the fibres the plate
+  // knocks down and the web's residual motion from forming (which the pressing mass scale
+  // multiplies), and acts on nothing at rest.
   const double approach = std::max(s.approach_speed, s.speed);
   const std::int64_t approach_chunk = std::max<std::int64_t>(
       1, static_cast<std::int64_t>(0.25 * r_max / (approach * w.settings.dt)));
+  const double web_surface =
+      MeasureSurfaces(w, metrics.thickness_grid, metrics.surface_percentile).top;
+  result.press_start = std::max(stop_z, web_surface + boss);
+  auto note_touch = [&] {
+    if (result.first_touch == 0.0 && plate_ref().reaction.z() > 0.0)
+      result.first_touch = plate_ref().z;
+  };
   plate_ref().vz = -approach;
-  while (plate_ref().z > stop_z + approach * w.settings.dt * approach_chunk &&
-         plate_ref().reaction.z() <= 0.0)
+  w.physics.drag = true;
+  while (plate_ref().z > result.press_start + approach * w.settings.dt * approach_chunk) {
     sim.Run(approach_chunk);
-  result.first_touch = plate_ref().z;
+    note_touch();
+    sample();
+  }
+  w.physics.drag = false;
   plate_ref().vz = -s.speed;
   Stopwatch clock;
   double next_report = progress.interval_s;
@@ -130,6 +145,7 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
     const auto left = static_cast<std::int64_t>(
         std::ceil((plate_ref().z - stop_z) / (s.speed * w.settings.dt)));
     sim.Run(std::min(chunk, std::max<std::int64_t>(left, 1)));
+    note_touch();
     sample();
     if (s.target == PressTarget::kPressure && pressure() >= s.target_pressure) break;
     if (clock.Seconds() >= next_report) {

@@ -5,10 +5,11 @@
 //
 // Pressing is quasi-static: it may use mass scaling, guarded by the ratio of kinetic
 // energy to the plate's work at the end of the compression (reported; a warning when it
-// exceeds kinetic_work_tolerance, default 1%). While the plate rests (hold, springback) a
-// background drag with relaxation time damping_time (F = -m_mean / damping_time * v) takes
-// out the elastic ringing; it is off while the plate moves down, where it would resist the
-// squeeze itself. Contacts damp through their restitution coefficient throughout.
+// exceeds kinetic_work_tolerance, default 1%). While the plate approaches the web or rests
+// (hold, springback) a background drag with relaxation time damping_time
+// (F = -m_mean / damping_time * v) takes out residual motion and elastic ringing; it is off
+// while the plate presses, where it would resist the squeeze itself. Contacts damp through
+// their restitution coefficient throughout.
 #pragma once
 
 #include <cstdint>
@@ -42,7 +43,7 @@ struct PressingSettings {
   int max_corrections = 5;
   double target_pressure = 0.0;      // plate force / cell area [Pa]
   double speed = 0.1;                // plate speed while pressing and lifting [m/s]
-  double approach_speed = 1.0;       // plate speed until it first touches the web [m/s]
+  double approach_speed = 1.0;       // plate speed down to the web's top surface [m/s]
   double mass_scale = 1.0;           // >= 1, quasi-static mass scaling
   double damping_time = 1e-5;        // background drag relaxation time [s]
   double min_hold_time = 0.0;        // [s] hold at least this long before bonding
@@ -74,6 +75,7 @@ struct PressingResult {
   double dt = 0.0;
   double max_pressure = 0.0;             // [Pa]
   double first_touch = 0.0;              // plate height at first contact with the web [m]
+  double press_start = 0.0;              // plate height where the approach ended [m]
   double plate_gap_at_hold = 0.0;        // [m]
   double thickness_at_hold = 0.0;        // [m], by the metrics' definition, when bonds form
   double plate_work = 0.0;               // [J] work the plate did on the web while pressing

@@ -80,7 +80,7 @@ const char* NetworkMetricUnit(const std::string& name) {
   return "-";
 }
 
-double Thickness(const World& w, double grid, double percentile) {
+SheetSurfaces MeasureSurfaces(const World& w, double grid, double percentile) {
   const Particles& p = w.particles;
   const int nx = std::max(1, static_cast<int>(std::lround(w.cell.Lx() / grid)));
   const int ny = std::max(1, static_cast<int>(std::lround(w.cell.Ly() / grid)));
@@ -102,7 +102,12 @@ double Thickness(const World& w, double grid, double percentile) {
       bottoms.push_back(bottom[c]);
     }
   const double q = percentile / 100.0;
-  return Percentile(tops, 1.0 - q) - Percentile(bottoms, q);
+  return {Percentile(tops, 1.0 - q), Percentile(bottoms, q)};
+}
+
+double Thickness(const World& w, double grid, double percentile) {
+  const SheetSurfaces s = MeasureSurfaces(w, grid, percentile);
+  return s.top - s.bottom;
 }
 
 DensityProfile MeasureDensityProfile(const World& w, double bin) {

@@ -71,6 +71,11 @@ NetworkMetrics Measure(const Network& net, const MetricsSettings& s);
 const char* NetworkMetricUnit(const std::string& name);
 
 // The parts of Measure, usable on their own.
+// Heights of the sheet's top and bottom surfaces as the thickness measure reads them [m].
+struct SheetSurfaces {
+  double top = 0.0, bottom = 0.0;
+};
+SheetSurfaces MeasureSurfaces(const World& w, double grid, double percentile);
 double Thickness(const World& w, double grid, double percentile);
 DensityProfile MeasureDensityProfile(const World& w, double bin);
 // Returns crossings per fibre; kallmes_corte (optional) receives the 2D random expectation.

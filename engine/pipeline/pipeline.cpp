@@ -129,6 +129,7 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
     stage.steps = r.steps;
     stage.details = {{"dt_s", r.dt},
                      {"plate_first_touch_um", r.first_touch * 1e6},
+                     {"plate_press_start_um", r.press_start * 1e6},
                      {"plate_gap_at_hold_um", r.plate_gap_at_hold * 1e6},
                      {"thickness_at_hold_um", r.thickness_at_hold * 1e6},
                      {"max_pressure_Pa", r.max_pressure},

@@ -1,11 +1,13 @@
-// The pipeline on the tiny scene: basis weight, settling, determinism, pressing to a target
-// thickness with springback, bonds formed.
+// The pipeline on the tiny scene: basis weight, settling, determinism, the pressing approach,
+// pressing to a target thickness with springback, bonds formed.
 #include "engine/pipeline/pipeline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -91,6 +93,46 @@ TEST(Pipeline, ParticleSpacingAboveOneDiameterIsWarnedAbout) {
   spec.forming.max_steps = 100;  // the warning is about the setting, not the outcome
   const PipelineReport coarse = RunPipeline(spec, Progress{});
   EXPECT_EQ(spacing_warnings(coarse.stages.at(0)), 1);
+}
+
+double HighestTop(const Particles& p) {
+  double top = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) top = std::max(top, p.x[i].z() + p.radius[i]);
+  return top;
+}
+
+// A formed web with a fibre standing up out of it, as forming leaves a few: the plate meets
+// that fibre first, comes down at the approach speed to the web's top surface (the one the
+// thickness measure reads), laying the fibre down on the way, and presses from there.
+TEST(Pipeline, PressingApproachesTheWebSurfaceLayingDownAStandingFibre) {
+  const PipelineSpec spec = TinySpec(7);
+  Network net = RunTiny(7, false).network;
+  const double surface =
+      MeasureSurfaces(net.world, spec.metrics.thickness_grid, spec.metrics.surface_percentile).top;
+  const FibreRecord like = net.fibres.front();
+  const int particles = 12;
+  FibreProperties f;
+  f.length = particles * like.diameter;
+  f.diameter = like.diameter;
+  f.coarseness = like.coarseness;
+  f.youngs_modulus = like.youngs_modulus;
+  f.shear_modulus = like.shear_modulus;
+  f.strength = like.strength;
+  // Leaning 5 degrees off the vertical, as a fibre propped up in a web does.
+  const double base = HighestTop(net.world.particles);
+  const Vec3 axis(std::sin(5.0 * kPi / 180.0), 0.0, std::cos(5.0 * kPi / 180.0));
+  std::vector<Vec3> centres;
+  for (int k = 0; k < particles; ++k)
+    centres.push_back(Vec3(0.3e-3, 0.3e-3, base + 0.5 * like.diameter) + k * like.diameter * axis);
+  net.AddFibre(f, centres, {});
+  const double standing_top = centres.back().z() + 0.5 * like.diameter;
+
+  const PressingResult r = Press(net, spec.sheet, *spec.pressing, spec.metrics, Progress{});
+  EXPECT_GT(r.first_touch, standing_top - like.diameter) << "the plate met the standing fibre first";
+  EXPECT_NEAR(r.press_start, std::max(surface, spec.pressing->target_thickness), like.diameter);
+  EXPECT_LT(r.press_start, base);
+  EXPECT_LT(HighestTop(net.world.particles), surface) << "the standing fibre was laid down";
+  EXPECT_EQ(net.CheckInvariants(), "");
 }
 
 }  // namespace
