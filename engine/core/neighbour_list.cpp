@@ -224,7 +224,7 @@ void NeighbourList::ImportHistory(const std::vector<PairHistory>& history) {
     if (it == last || *it != partner)
       throw std::invalid_argument("contact history names a pair the neighbour list lacks");
     // Seen from the other side of the pair, the tangential displacement changes sign.
-    history_[it - partners_.begin()] = owner < partner ? h.xi : Vec3(-h.xi);
+    history_[it - partners_.begin()] = owner == h.i ? h.xi : Vec3(-h.xi);
   }
 }
 

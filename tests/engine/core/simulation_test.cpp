@@ -157,6 +157,13 @@ TEST(NeighbourList, ContactHistoriesRoundTripFromEitherSide) {
   fresh.ImportHistory(exported);
   ASSERT_EQ(fresh.size(), nl.size());
   for (std::size_t k = 0; k < nl.size(); ++k) EXPECT_EQ(fresh.History(k), nl.History(k));
+  // The same histories named from the other side of each pair.
+  std::vector<PairHistory> swapped;
+  for (const PairHistory& h : exported) swapped.push_back({h.j, h.i, -h.xi});
+  NeighbourList other;
+  other.Build(w.particles, w.cell, w.bonds, 8e-6);
+  other.ImportHistory(swapped);
+  for (std::size_t k = 0; k < nl.size(); ++k) EXPECT_EQ(other.History(k), nl.History(k));
 }
 
 TEST(NeighbourList, IsRebuiltWhenAParticleMovesHalfTheSkin) {
