@@ -6,11 +6,7 @@
 # Usage: scripts/creping_study.sh OUT_DIR [FIBRENET]   (about 15 min on 2 cores)
 # Then:  /usr/bin/python3 scripts/plot_creping_study.py OUT_DIR docs/figures
 set -euo pipefail
-out=${1:?usage: creping_study.sh OUT_DIR [FIBRENET]}
-fibrenet=$(realpath "${2:-build/fibrenet}")
-scene=$(realpath campaigns/scenes/study-creping.toml)
-mkdir -p "$out"
-cd "$out"
+source "$(dirname "$0")/study_start.sh" campaigns/scenes/study-creping.toml "$@"
 "$fibrenet" run "$scene" --out base --json > base.json 2> base.err
 run() {
   local name=$1; shift

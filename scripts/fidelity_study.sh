@@ -13,11 +13,7 @@
 # Usage: scripts/fidelity_study.sh OUT_DIR [FIBRENET]   (about 45 min on 2 cores)
 # Then:  /usr/bin/python3 scripts/plot_fidelity_study.py OUT_DIR docs/figures
 set -euo pipefail
-out=${1:?usage: fidelity_study.sh OUT_DIR [FIBRENET]}
-fibrenet=$(realpath "${2:-build/fibrenet}")
-scene=$(realpath campaigns/scenes/study-fidelity.toml)
-mkdir -p "$out"
-cd "$out"
+source "$(dirname "$0")/study_start.sh" campaigns/scenes/study-fidelity.toml "$@"
 run() {  # NAME SEED THREADS [--set KEY=VALUE ...]
   local name=$1 seed=$2 threads=$3
   shift 3

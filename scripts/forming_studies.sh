@@ -8,11 +8,7 @@
 # Usage: scripts/forming_studies.sh OUT_DIR [FIBRENET]   (about 1.5 h on 2 cores)
 # Then:  /usr/bin/python3 scripts/plot_forming_studies.py OUT_DIR docs/figures
 set -euo pipefail
-out=${1:?usage: forming_studies.sh OUT_DIR [FIBRENET]}
-fibrenet=$(realpath "${2:-build/fibrenet}")
-scene=$(realpath campaigns/scenes/study-small-cell.toml)
-mkdir -p "$out"
-cd "$out"
+source "$(dirname "$0")/study_start.sh" campaigns/scenes/study-small-cell.toml "$@"
 # Forming alone: the scene without its [pressing] tables.
 python3 -c "import re,sys; print(re.sub(r'\n\[pressing\].*\Z', '\n', open(sys.argv[1]).read(), flags=re.S))" \
   "$scene" > formed-only.toml

@@ -1,0 +1,11 @@
+# The common start of the study scripts, sourced by them with their scene and arguments:
+#   source "$(dirname "$0")/study_start.sh" SCENE "$@"      (run from the repository root)
+# Reads OUT_DIR and the optional FIBRENET executable (default build/fibrenet), sets `out`,
+# `fibrenet` and `scene` (both made absolute), creates OUT_DIR and moves into it. The caller
+# has set -euo pipefail, so a missing OUT_DIR stops it with the usage line.
+scene=$(realpath "$1")
+shift
+out=${1:?usage: $(basename "$0") OUT_DIR [FIBRENET]}
+fibrenet=$(realpath "${2:-build/fibrenet}")
+mkdir -p "$out"
+cd "$out"
