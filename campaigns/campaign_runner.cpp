@@ -2,20 +2,18 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <set>
 
 #include "campaigns/candidate_book.h"
 #include "campaigns/progress.h"
 #include "db/queries.h"
 #include "engine/core/error.h"
+#include "engine/core/stopwatch.h"
 #include "optimizer/doe.h"
 #include "optimizer/nlopt_driver.h"
 
 namespace fibrenet::campaigns {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 class CampaignRun {
  public:
@@ -25,8 +23,7 @@ class CampaignRun {
         db_(db),
         scheduler_(scheduler),
         options_(options),
-        penalty_(spec.failure_penalty),
-        start_(Clock::now()) {
+        penalty_(spec.failure_penalty) {
     const optimizer::AlgorithmInfo* info =
         spec.algorithm ? optimizer::FindAlgorithm(spec.algorithm->name) : nullptr;
     native_constraints_ = info && info->constraints && spec.goals.NumConstraintValues() > 0;
@@ -81,7 +78,7 @@ class CampaignRun {
       if (!ranked.empty()) result_.best_per_level.push_back(Summarise(*ranked.front()));
     }
     result_.candidates = static_cast<int>(book_->in_order().size());
-    result_.wall_s = Elapsed();
+    result_.wall_s = clock_.Seconds();
     result_.status = stopped_ ? fmt::format(
                                     "stopped: wall-time budget of {} s reached; run the "
                                     "same command again to continue",
@@ -91,9 +88,7 @@ class CampaignRun {
     progress_->Finished(result_);
   }
 
-  double Elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
-
-  bool OutOfTime() const { return spec_.max_wall_s > 0.0 && Elapsed() >= spec_.max_wall_s; }
+  bool OutOfTime() const { return spec_.max_wall_s > 0.0 && clock_.Seconds() >= spec_.max_wall_s; }
 
   // The numbers the optimiser sees for a finished candidate (see optimizer/goals.h for the
   // penalty of failed ones: without native constraints the merit is the penalty itself).
@@ -121,7 +116,7 @@ class CampaignRun {
 
   ProgressStatus Status() const {
     ProgressStatus s;
-    s.elapsed_s = Elapsed();
+    s.elapsed_s = clock_.Seconds();
     s.max_wall_s = spec_.max_wall_s;
     s.optimiser_calls = optimiser_calls_;
     s.max_evaluations = spec_.algorithm ? spec_.stop.max_evaluations : 0;
@@ -255,7 +250,7 @@ class CampaignRun {
   optimizer::Scheduler& scheduler_;
   const RunnerOptions& options_;
   optimizer::FailurePenalty penalty_;
-  Clock::time_point start_;
+  Stopwatch clock_;  // since the run began
   bool native_constraints_ = false;
   bool stopped_ = false;
   int optimiser_calls_ = 0;
