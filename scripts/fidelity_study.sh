@@ -34,8 +34,8 @@ series() {  # SEED
 }
 series 1 &
 series 2 &
-wait
+wait_all
 run control_perturbed 1 1 --set fidelity.time_step_safety=0.499 &
 run control_perturbed 2 1 --set fidelity.time_step_safety=0.499 &
-wait
+wait_all
 echo "fidelity study written to $out"

@@ -27,5 +27,5 @@ reference="--set forming.mass_scale=10 --set forming.gravity_scale=10 --set form
     run "c015_$seed" formed-only.toml --set seed=$seed --set forming.consistency_percent=0.15
   done
 } &
-wait
+wait_all
 echo "forming studies written to $out"

@@ -1,11 +1,19 @@
 # The common start of the study scripts, sourced by them with their scene and arguments:
 #   source "$(dirname "$0")/study_start.sh" SCENE "$@"      (run from the repository root)
 # Reads OUT_DIR and the optional FIBRENET executable (default build/fibrenet), sets `out`,
-# `fibrenet` and `scene` (both made absolute), creates OUT_DIR and moves into it. The caller
-# has set -euo pipefail, so a missing OUT_DIR stops it with the usage line.
+# `fibrenet` and `scene` (both made absolute), creates OUT_DIR and moves into it, and defines
+# wait_all for the scripts that run series side by side. The caller has set -euo pipefail,
+# so a missing OUT_DIR stops it with the usage line.
 scene=$(realpath "$1")
 shift
 out=${1:?usage: $(basename "$0") OUT_DIR [FIBRENET]}
 fibrenet=$(realpath "${2:-build/fibrenet}")
 mkdir -p "$out"
 cd "$out"
+
+# Waits for every background job and fails if any of them failed (a bare `wait` returns 0).
+wait_all() {
+  local pid status=0
+  for pid in $(jobs -p); do wait "$pid" || status=$?; done
+  return "$status"
+}
