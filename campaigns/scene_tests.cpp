@@ -25,6 +25,7 @@ void ReadQuasiStatic(TableReader& r, pipeline::QuasiStaticSettings& q) {
   q.bond_damping_ratio = r.Number("bond_damping_ratio", q.bond_damping_ratio, Closed(0, 1), "");
   q.drag_time_fraction =
       r.Number("drag_time_fraction", q.drag_time_fraction, Closed(0, 10), "of the loading time");
+  q.local_damping = r.Number("local_damping", q.local_damping, ClosedOpen(0, 1), "(0 = off)");
   q.kinetic_work_tolerance =
       r.Number("kinetic_work_tolerance", q.kinetic_work_tolerance, OpenClosed(0, 1), "");
   q.time_step_safety = r.Number("time_step_safety", q.time_step_safety, OpenClosed(0, 1), "of dt_crit");

@@ -90,6 +90,7 @@ void Simulation::Integrate() {
   const double dt = w_.settings.dt;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
   const double limit = w_.settings.max_step_displacement;
+  if (ph.local_damping > 0.0) ApplyLocalDamping();
   double work_gravity = 0.0, work_drag = 0.0, work_applied = 0.0;
   std::int64_t runaway = -1;
 #pragma omp parallel for schedule(static) reduction(+ : work_gravity, work_drag, work_applied) \
@@ -117,6 +118,27 @@ void Simulation::Integrate() {
   if (runaway >= 0)
     FailAt(static_cast<std::size_t>(runaway),
            fmt::format("kinetic-energy blow-up: moved more than {} radius in one step", limit));
+}
+
+void Simulation::ApplyLocalDamping() {
+  Particles& p = w_.particles;
+  const double alpha = w_.physics.local_damping, dt = w_.settings.dt;
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+  double loss = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : loss)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (p.inv_mass[i] == 0.0) continue;  // a prescribed motion
+    const Vec3 damping_force = -alpha * p.force[i].cwiseAbs().cwiseProduct(p.v[i].cwiseSign());
+    const Vec3 damping_torque =
+        -alpha * p.torque[i].cwiseAbs().cwiseProduct(p.omega[i].cwiseSign());
+    p.force[i] += damping_force;
+    p.torque[i] += damping_torque;
+    // Work over the drift the integrator will make, with v_n+1 and omega_n+1.
+    const Vec3 v_next = p.v[i] + p.force[i] * (p.inv_mass[i] * dt);
+    const Vec3 omega_next = p.omega[i] + p.torque[i] * (p.inv_inertia[i] * dt);
+    loss -= (damping_force.dot(v_next) + damping_torque.dot(omega_next)) * dt;
+  }
+  w_.energy.damping += loss;
 }
 
 void Simulation::FailAt(std::size_t particle, const std::string& cause) {

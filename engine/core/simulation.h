@@ -33,6 +33,9 @@ class Simulation {
 
  private:
   void Integrate();
+  // Physics::local_damping: adds the damping to each free particle's force and torque and
+  // books the energy it takes out.
+  void ApplyLocalDamping();
   [[noreturn]] void FailAt(std::size_t particle, const std::string& cause);
 
   World& w_;

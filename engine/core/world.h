@@ -26,6 +26,12 @@ struct Physics {
   bool contacts = false;             // non-bonded van Wyk contacts
   bool friction = false;             // Coulomb friction on contacts and walls
   bool applied_loads = false;        // per-particle applied forces and torques
+  // Local non-viscous damping (Cundall 1987), in [0, 1): each force and torque component
+  // on a free particle is reduced by local_damping x its magnitude when it drives the motion
+  // and raised as much when it opposes it. It vanishes in equilibrium, at any velocity, so
+  // it relaxes quasi-static loading without resisting the steady motion a viscous drag
+  // would; 0 = off.
+  double local_damping = 0.0;
 };
 
 // What to do with a user time step above safety * dt_crit.
@@ -49,7 +55,7 @@ struct StepSettings {
 // Energy bookkeeping since the start of the run [J]. Balance:
 //   kinetic + strain + dissipated + released = initial + work.
 struct EnergyLedger {
-  double damping = 0.0;         // viscous contact damping
+  double damping = 0.0;         // viscous contact damping and local damping
   double friction = 0.0;        // Coulomb slip (contacts and walls)
   double bond_inelastic = 0.0;  // bond dashpots, Maxwell flow, plastic bending
   double released = 0.0;        // strain energy of bonds at the step they broke

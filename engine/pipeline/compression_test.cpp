@@ -61,7 +61,7 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
 
   const double loading_time = s.max_strain / s.strain_rate;
   run.mass_scale = ChooseMassScale(w, s.quasi_static, loading_time);
-  AddBondDamping(w, s.quasi_static.bond_damping_ratio);
+  ApplyQuasiStaticDamping(w, s.quasi_static);
   const double speed = s.strain_rate * run.h0;
   const std::vector<std::uint8_t> held(p.size(), 0);
   int sign = -1;  // -1 platen down (loading), +1 up

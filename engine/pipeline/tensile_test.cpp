@@ -79,7 +79,7 @@ TensileResult RunTensileTest(Network net, const TensileSettings& s, const Progre
 
   TensileResult res;
   res.mass_scale = ChooseMassScale(w, s.quasi_static, s.max_strain / s.strain_rate);
-  AddBondDamping(w, s.quasi_static.bond_damping_ratio);
+  ApplyQuasiStaticDamping(w, s.quasi_static);
   const double V = s.strain_rate * g.span;
   DriveGrips(w, g, V, +1, true, 0.0);
   Simulation sim(w);

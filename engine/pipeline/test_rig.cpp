@@ -27,6 +27,8 @@ std::string QuasiStaticSettings::Validate() const {
     return fmt::format("bond_damping_ratio = {}: must lie in [0, 1]", bond_damping_ratio);
   if (!(drag_time_fraction >= 0.0 && drag_time_fraction <= 10.0))
     return fmt::format("drag_time_fraction = {}: must lie in [0, 10] (0 = off)", drag_time_fraction);
+  if (!(local_damping >= 0.0 && local_damping < 1.0))
+    return fmt::format("local_damping = {}: must lie in [0, 1) (0 = off)", local_damping);
   if (!(kinetic_work_tolerance > 0.0 && kinetic_work_tolerance <= 1.0))
     return fmt::format("kinetic_work_tolerance = {}: must lie in (0, 1]", kinetic_work_tolerance);
   if (!(time_step_safety > 0.0 && time_step_safety <= 1.0))
@@ -70,6 +72,11 @@ void AddBondDamping(World& w, double ratio) {
     t.damping_rot =
         std::max(t.damping_rot, 2.0 * ratio * std::sqrt(0.5 * inertia * std::max(t.k_b, t.k_t)));
   }
+}
+
+void ApplyQuasiStaticDamping(World& w, const QuasiStaticSettings& s) {
+  AddBondDamping(w, s.bond_damping_ratio);
+  w.physics.local_damping = s.local_damping;
 }
 
 double ChooseMassScale(World& w, const QuasiStaticSettings& s, double loading_time) {

@@ -13,6 +13,10 @@
 //    They act on relative motion only (zero for rigid motion) and take out ringing; their
 //    force at the loading rate is negligible against the elastic one (measured as part of
 //    the guard) and their dissipation is booked with the bond losses.
+//  - Local non-viscous damping (Cundall 1987; Physics::local_damping): each force component
+//    on a particle is reduced by a fraction of its magnitude while it drives the motion. It
+//    vanishes in equilibrium whatever the velocity, so unlike a drag it carries no load in
+//    a non-affine but steady deformation (a platen pushing the top of a loose mat).
 //  - Background drag relative to the imposed affine velocity field (ApplyAffineDrag), with a
 //    relaxation time drag_time_fraction of the loading time. The guards bound both the
 //    kinetic energy (beyond the affine motion) against the external work and the share of
@@ -49,6 +53,8 @@ struct QuasiStaticSettings {
   // Background drag relaxation time as a fraction of the loading time (ApplyAffineDrag);
   // 0 = off.
   double drag_time_fraction = 0.02;
+  // Local non-viscous damping coefficient (Physics::local_damping), [0, 1); 0 = off.
+  double local_damping = 0.0;
   double kinetic_work_tolerance = 0.01;  // guard on kinetic energy / external work, (0, 1]
   double time_step_safety = 0.5;         // dt = safety * dt_crit, (0, 1]
 
@@ -61,6 +67,8 @@ void ApplyTestPhysics(Network& net, const MaterialSwitches& s);
 
 // Adds bond dashpots (see the header comment) for the current masses.
 void AddBondDamping(World& w, double ratio);
+// The damping of quasi-static control: bond dashpots and local damping as `s` sets them.
+void ApplyQuasiStaticDamping(World& w, const QuasiStaticSettings& s);
 
 // Scales masses for the test: returns M (the given one, or the automatic choice that makes
 // the loading, which lasts `loading_time` seconds, take loading_steps steps). Call after the
