@@ -68,8 +68,26 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
   auto field = [&] {
     return AffineField{2, z_lo, w.walls[1].z - z_lo, w.walls[1].vz};
   };
-  w.walls[1].vz = -speed;
+  // Kinetic energy of the affine field at the full speed (masses scaled): the platen comes
+  // down no faster than keeps it within a quarter of the guard's tolerance of the work done
+  // so far (the motion beyond the affine field is of the same order).
+  double kinetic_full = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    kinetic_full += 0.5 * p.mass[i] * std::pow(speed * (p.x[i].z() - z_lo) / run.h0, 2);
+  const double allowed = 0.25 * s.quasi_static.kinetic_work_tolerance;
+  auto loading_speed = [&](double work) {
+    const double rule = speed * std::sqrt(allowed * std::max(work, 0.0) / kinetic_full);
+    return std::clamp(rule, s.min_speed_fraction * speed, speed);
+  };
+  w.walls[1].vz = -loading_speed(0.0);
   for (std::size_t i = 0; i < p.size(); ++i) p.v[i] = field().At(p.x[i]);
+  // A new platen velocity, with the affine part of the particles' motion changed to match.
+  auto set_platen_velocity = [&](double vz) {
+    const AffineField before = field();
+    w.walls[1].vz = vz;
+    const AffineField after = field();
+    for (std::size_t i = 0; i < p.size(); ++i) p.v[i] += after.At(p.x[i]) - before.At(p.x[i]);
+  };
   Simulation sim(w);
   if (std::string warn = sim.Prepare(); !warn.empty()) run.warnings.push_back(warn);
   run.dt = w.settings.dt;
@@ -107,6 +125,10 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
     ++step;
     strain = (run.h0 - (w.walls[1].z - z_lo)) / run.h0;
     pressure = 0.5 * (w.walls[1].reaction.z() - w.walls[0].reaction.z()) / area;
+    if (sign < 0 && -w.walls[1].vz < speed) {
+      const double faster = loading_speed(w.walls[0].work + w.walls[1].work);
+      if (faster > -1.01 * w.walls[1].vz) set_platen_velocity(-faster);
+    }
     if (sign < 0 && pressure > peak) {
       peak = pressure;
       strain_at_peak = strain;
@@ -121,12 +143,8 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
     if (step % every == 0 || turn || stop) sample();
     if (stop) break;
     if (turn) {
-      // Reverse the platen and the affine part of the particles' motion.
-      const AffineField before = field();
-      w.walls[1].vz = speed;
+      set_platen_velocity(speed);
       sign = +1;
-      const AffineField after = field();
-      for (std::size_t i = 0; i < p.size(); ++i) p.v[i] += after.At(p.x[i]) - before.At(p.x[i]);
     }
     if (progress.report && clock.Seconds() >= next_report) {
       progress.Say(fmt::format("{}: step {} strain {:.4g} pressure {:.4g} Pa ({})", name, step,
@@ -198,6 +216,9 @@ std::string CompressionSettings::Validate() const {
   if (!(residual_pressure_fraction > 0.0 && residual_pressure_fraction < 1.0))
     return fmt::format("residual_pressure_fraction = {}: must lie in (0, 1)",
                        residual_pressure_fraction);
+  if (!(min_speed_fraction > 0.0 && min_speed_fraction <= 1.0))
+    return fmt::format("min_speed_fraction = {}: must lie in (0, 1] (1 = constant speed)",
+                       min_speed_fraction);
   if (samples < 10 || samples > 100000)
     return fmt::format("samples = {}: must lie in [10, 100000]", samples);
   if (max_steps < 1) return fmt::format("max_steps = {}: must be >= 1", max_steps);

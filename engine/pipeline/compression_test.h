@@ -5,7 +5,7 @@
 // top, both periodic in x and y. The top platen comes down at a constant speed, strain_rate
 // times the initial gap, until the strain reaches max_strain or the pressure max_pressure,
 // then goes back up at the same speed until the pressure is gone (or the gap is the initial
-// one). Contacts (van Wyk, with friction as the switches say) are on. Quasi-static control as
+// one); in the toe it comes down slower (min_speed_fraction). Contacts (van Wyk, with friction as the switches say) are on. Quasi-static control as
 // for the tensile test (test_rig.h), with the affine field u_z = v_platen (z - z_floor) / gap
 // and local damping instead of the drag by default (CompressionQuasiStatic).
 //
@@ -57,6 +57,12 @@ struct CompressionSettings {
   double max_strain = 0.6;        // (0, 0.95]
   double max_pressure = 0.0;      // [Pa]; > 0: stop loading at this pressure (or max_strain)
   double strain_rate = 1.0;       // platen speed / h0 [1/s]
+  // Slow toe: while loading, the platen speed is the full speed times
+  // sqrt(kinetic_work_tolerance / 4 x platen work so far / kinetic energy of the affine field
+  // at the full speed), within [min_speed_fraction, 1] (1 = constant speed). With the masses
+  // scaled, a sheet moving at the full speed holds far more kinetic energy than the platen
+  // has put in during the toe; the kinetic energy goes as the speed squared.
+  double min_speed_fraction = 0.01;
   double modulus_pressure_lo = 500.0, modulus_pressure_hi = 2000.0;  // [Pa]
   double residual_pressure_fraction = 0.01;
   int samples = 400;              // curve points over the loading

@@ -1,6 +1,7 @@
 // Softness: the top-surface height map and its spectrum on surfaces of known shape, the
 // composite index, and the whole virtual-test stage (tensile MD and CD, compression,
-// softness) on the tiny pressed sheet of tiny_spec.h, which must report every metric.
+// softness) on the tiny pressed sheet of tiny_spec.h, which must report every metric, and the
+// ZD compression's slow toe on that sheet.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -62,6 +63,26 @@ TEST(Softness, IndexIsOneHundredAtTheReferenceAndRisesAsTheSheetSoftens) {
   EXPECT_NEAR(SoftnessIndex(2 * s.bulk_ref_um_per_kPa, s.roughness_ref_um, s.bending_ref_mN_mm, s),
               100.0 * std::pow(2.0, s.w_bulk), 1e-9);
   EXPECT_TRUE(std::isnan(SoftnessIndex(0.0, 1.0, 1.0, s)));
+}
+
+// With the masses scaled for the loading, a sheet moving at the platen's full speed holds far
+// more kinetic energy than the platen puts in during the toe (kinetic / platen work 16.7
+// here); the slow toe keeps the guard (0.006).
+TEST(ZdCompression, TheSlowToeKeepsAPressedSheetQuasiStatic) {
+  const PipelineReport sheet = RunPipeline(testing::TinySpec(7), Progress{});
+  CompressionSettings c;
+  c.quasi_static.loading_steps = 20000;  // at 10000 the guard read 0.013
+  c.samples = 100;
+  const CompressionResult slow_toe = RunCompressionTest(sheet.network, c);
+  c.min_speed_fraction = 1.0;
+  const CompressionResult constant = RunCompressionTest(sheet.network, c);
+  std::printf("kinetic / platen work: slow toe %.4g, constant speed %.4g; steps %ld, %ld\n",
+              slow_toe.Value("zd_kinetic_work_ratio"), constant.Value("zd_kinetic_work_ratio"),
+              static_cast<long>(slow_toe.steps), static_cast<long>(constant.steps));
+  EXPECT_TRUE(slow_toe.quasi_static) << slow_toe.warnings.back();
+  EXPECT_FALSE(constant.quasi_static);
+  EXPECT_EQ(slow_toe.Value("zd_drag_load_ratio"), 0.0);  // local damping, no drag
+  EXPECT_GT(slow_toe.steps, constant.steps);
 }
 
 TEST(VirtualTests, TinySheetReportsEveryMetric) {

@@ -105,6 +105,9 @@ TEST(Settings, MessagesNameTheKeyAndTheRange) {
   CompressionSettings c;
   c.max_strain = 0.99;
   EXPECT_NE(c.Validate().find("max_strain"), std::string::npos);
+  c = CompressionSettings{};
+  c.min_speed_fraction = 0.0;
+  EXPECT_NE(c.Validate().find("min_speed_fraction"), std::string::npos);
   BendingSettings b;
   b.levels = 1;
   EXPECT_NE(b.Validate().find("levels"), std::string::npos);

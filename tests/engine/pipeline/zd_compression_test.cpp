@@ -39,6 +39,9 @@ CompressionSettings MatCompression() {
   CompressionSettings s;
   s.max_strain = 0.9;
   s.quasi_static.loading_steps = 8000;
+  // Constant speed: the slow toe follows the platen work, which stays tiny while the platen
+  // sweeps up the floating fibres (about 100x the steps).
+  s.min_speed_fraction = 1.0;
   s.samples = 200;
   return s;
 }
@@ -48,10 +51,10 @@ const CompressionResult& MatResult() {
   return r;
 }
 
-// Disabled until the compression test is quasi-static at a test-sized cost: with the time
-// step set by the fibres' axial stiffness, the mat's slowest compression mode takes ~1e5
-// steps, and meeting the 1% kinetic / drag guard needs ~1e6 (a quasi-static relaxation solver,
-// e.g. FIRE, per platen position is the planned fix). Run them with
+// Disabled: this floating mat has no elastic resistance until a chain of contacts reaches the
+// floor, so the platen sweeps up fibres at rest like a snowplough and the mat's inertia, with
+// the masses scaled for the loading, sets the pressure (docs/virtual-tests.md, known limit).
+// A specimen settled under gravity is the planned check. Run them with
 // --gtest_also_run_disabled_tests.
 TEST(ZdCompression, DISABLED_LooseMatFollowsTheVanWykForm) {
   const Network mat = LooseMat();
