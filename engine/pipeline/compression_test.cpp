@@ -76,6 +76,7 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
     kinetic_full += 0.5 * p.mass[i] * std::pow(speed * (p.x[i].z() - z_lo) / run.h0, 2);
   const double allowed = 0.25 * s.quasi_static.kinetic_work_tolerance;
   auto loading_speed = [&](double work) {
+    if (!(kinetic_full > 0.0)) return speed;  // every particle on the floor: nothing to move
     const double rule = speed * std::sqrt(allowed * std::max(work, 0.0) / kinetic_full);
     return std::clamp(rule, s.min_speed_fraction * speed, speed);
   };
