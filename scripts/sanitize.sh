@@ -40,7 +40,7 @@ slow=(
   'Pipeline\..*'
   'VirtualTests\..*'
   'NetworkChecks\..*'
-  'ZdCompression\.StopsAtTheTargetPressure'
+  'ZdCompression\.(StopsAtTheTargetPressure|TheSlowToeKeepsAPressedSheetQuasiStatic)'
   'Relief\.SphereRestsOnePocketDepthLowerOverAPocket'
   'Creping\..*'
   'Validation/BeamCases\..*/(cantilever_elastica|euler_buckling|bending_frequency) .*'
