@@ -2,12 +2,13 @@
 //
 // Procedure. The network is copied and put between two platens: a floor (Wall, side +1) at
 // the lowest particle's bottom and a top platen (Wall, side -1) at the highest particle's
-// top, both periodic in x and y. The top platen comes down at a constant speed, strain_rate
-// times the initial gap, until the strain reaches max_strain or the pressure max_pressure,
-// then goes back up at the same speed until the pressure is gone (or the gap is the initial
-// one); in the toe it comes down slower (min_speed_fraction). Contacts (van Wyk, with friction as the switches say) are on. Quasi-static control as
-// for the tensile test (test_rig.h), with the affine field u_z = v_platen (z - z_floor) / gap
-// and local damping instead of the drag by default (CompressionQuasiStatic).
+// top, both periodic in x and y. The top platen comes down at strain_rate times the initial
+// gap (slower in the toe: min_speed_fraction), until the strain reaches max_strain or the
+// pressure max_pressure, then goes back up at that full speed until the pressure is gone (or
+// the gap is the initial one). Contacts (van Wyk, with friction as the switches say) are on.
+// Quasi-static control as for the tensile test (test_rig.h), with the affine field
+// u_z = v_platen (z - z_floor) / gap and local damping instead of the drag by default
+// (CompressionQuasiStatic).
 //
 // Definitions:
 //  strain                   (h0 - gap) / h0, h0 the gap at first contact [-]

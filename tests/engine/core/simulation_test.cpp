@@ -409,7 +409,6 @@ TEST(NeighbourList, TheSkinChangesNoResultBitForBit) {
                         positions[0].size() * sizeof(Vec3)), 0);
 }
 
-
 // Local damping on a linear oscillator (a free sphere on an axial bond to a pinned one). From
 // an extreme at rest the force drives the motion and is cut by alpha on the way in; past the
 // rest length it opposes the motion and grows by alpha on the way out. Energy then gives the
