@@ -124,11 +124,17 @@ void Simulation::ApplyLocalDamping() {
   Particles& p = w_.particles;
   const double alpha = w_.physics.local_damping, dt = w_.settings.dt;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
+  const std::vector<Vec3>& reference = w_.damping_reference;
+  if (!reference.empty() && reference.size() != p.size())
+    throw RunError(fmt::format("damping_reference holds {} velocities for {} particles",
+                               reference.size(), p.size()));
+  const bool at_rest = reference.empty();
   double loss = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : loss)
   for (std::int64_t i = 0; i < n; ++i) {
     if (p.inv_mass[i] == 0.0) continue;  // a prescribed motion
-    const Vec3 damping_force = -alpha * p.force[i].cwiseAbs().cwiseProduct(p.v[i].cwiseSign());
+    const Vec3 motion = at_rest ? p.v[i] : Vec3(p.v[i] - reference[i]);
+    const Vec3 damping_force = -alpha * p.force[i].cwiseAbs().cwiseProduct(motion.cwiseSign());
     const Vec3 damping_torque =
         -alpha * p.torque[i].cwiseAbs().cwiseProduct(p.omega[i].cwiseSign());
     p.force[i] += damping_force;

@@ -30,7 +30,7 @@ struct Physics {
   // on a free particle is reduced by local_damping x its magnitude when it drives the motion
   // and raised as much when it opposes it. It vanishes in equilibrium, at any velocity, so
   // it relaxes quasi-static loading without resisting the steady motion a viscous drag
-  // would; 0 = off.
+  // would; 0 = off. "The motion" is the velocity relative to World::damping_reference.
   double local_damping = 0.0;
 };
 
@@ -78,6 +78,10 @@ struct World {
   std::vector<Blade> blades;
   // Per-particle applied loads (used when physics.applied_loads) [N], [N m].
   std::vector<Vec3> applied_force, applied_torque;
+  // The velocity local damping measures each particle's motion against [m/s]; empty: rest.
+  // The damping is not Galilean invariant: measured against rest it resists a deformation a
+  // test rig imposes on the whole sheet, so the rig sets this to that deformation.
+  std::vector<Vec3> damping_reference;
   StepSettings settings;
 
   NeighbourList neighbours;

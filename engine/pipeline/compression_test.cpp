@@ -122,6 +122,7 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
       break;
     }
     if (tau > 0.0) ApplyAffineDrag(w, held, field(), tau);
+    SetDampingReference(w, field());
     sim.Step();
     ++step;
     strain = (run.h0 - (w.walls[1].z - z_lo)) / run.h0;

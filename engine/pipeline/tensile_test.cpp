@@ -146,6 +146,7 @@ TensileResult RunTensileTest(Network net, const TensileSettings& s, const Progre
       break;
     }
     if (tau > 0.0) ApplyAffineDrag(w, held, field(), tau);
+    SetDampingReference(w, field());
     sim.Step();
     ++step;
     strain += sign * d_strain;

@@ -210,6 +210,15 @@ double FluctuatingKineticEnergy(const World& w, const std::vector<std::uint8_t>&
   return e;
 }
 
+void SetDampingReference(World& w, const AffineField& field) {
+  if (!(w.physics.local_damping > 0.0)) return;
+  const Particles& p = w.particles;
+  w.damping_reference.resize(p.size());
+  const std::int64_t n = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) w.damping_reference[i] = field.At(p.x[i]);
+}
+
 void ApplyAffineDrag(World& w, const std::vector<std::uint8_t>& held, const AffineField& field,
                      double tau) {
   Particles& p = w.particles;

@@ -117,6 +117,11 @@ struct AffineField {
 double FluctuatingKineticEnergy(const World& w, const std::vector<std::uint8_t>& held,
                                 const AffineField& field);
 
+// Sets the reference of local damping (World::damping_reference) to the affine field at each
+// particle, so that the damping acts on the motion beyond it. Call before every step while
+// the field changes; a no-op when local damping is off.
+void SetDampingReference(World& w, const AffineField& field);
+
 // Background drag on the motion beyond the affine field (dynamic relaxation): applied force
 // -m_i / tau (v_i - u(x_i)) and torque -I_i / tau omega_i on every particle not held. It
 // vanishes in the quasi-static limit and damps the slow, floppy modes of sparse networks that

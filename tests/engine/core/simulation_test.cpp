@@ -459,5 +459,58 @@ TEST(LocalDamping, ExtremesDecayAsTheAnalyticRatioAndTheLedgerBalances) {
   }
 }
 
+// Galilean invariance: a free two-sphere oscillator drifting along its axis at several times
+// its peak oscillation speed. Measured against a reference moving with the drift, the damping
+// sees only the oscillation: each sphere oscillates about the centre of mass, so the extremes
+// of the extension decay as at rest, and the drift is untouched. Measured against rest, the
+// motion never changes sign: the force pair is cut on one sphere and raised on the other, and
+// the drift itself is braked.
+struct DriftingOscillator {
+  std::vector<double> extremes;  // extension at the turning points [m]
+  double drift_end = 0.0;        // centre-of-mass velocity at the end [m/s]
+};
+
+DriftingOscillator DriftingOscillatorRun(double alpha, double drift, bool moving_reference) {
+  World w;
+  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+  w.cell.hi = Vec3(1e-3, 1e-3, 1e-3);
+  AddChain(w, 2, 32e-6);
+  const double a0 = 0.5e-6;
+  w.particles.x[1].x() += a0;
+  for (Vec3& v : w.particles.v) v = Vec3(drift, 0.0, 0.0);
+  w.physics.local_damping = alpha;
+  if (moving_reference) w.damping_reference.assign(2, Vec3(drift, 0.0, 0.0));
+  w.settings.safety = 0.05;
+  Simulation sim(w);
+  sim.Prepare();
+  const Particles& p = w.particles;
+  auto extension = [&] { return w.cell.Delta(p.x[0], p.x[1]).x() - 32e-6; };
+  DriftingOscillator out;
+  out.extremes = {extension()};
+  for (int step = 0; step < 20000 && out.extremes.size() < 4; ++step) {
+    const double rate_before = p.v[1].x() - p.v[0].x();
+    sim.Step();
+    const double rate = p.v[1].x() - p.v[0].x();
+    if (rate_before != 0.0 && (rate_before > 0.0) != (rate > 0.0))
+      out.extremes.push_back(extension());
+  }
+  out.drift_end = 0.5 * (p.v[0].x() + p.v[1].x());
+  return out;
+}
+
+TEST(LocalDamping, AReferenceMovingWithTheSheetMakesItGalileanInvariant) {
+  const double alpha = 0.7, drift = 200.0;  // the oscillation peaks near 40 m/s
+  const double expected = std::sqrt((1.0 - alpha) / (1.0 + alpha));
+  const DriftingOscillator moving = DriftingOscillatorRun(alpha, drift, true);
+  ASSERT_EQ(moving.extremes.size(), 4u);
+  for (std::size_t k = 1; k < moving.extremes.size(); ++k)
+    EXPECT_NEAR(std::abs(moving.extremes[k] / moving.extremes[k - 1]), expected, 0.02 * expected)
+        << "extreme " << k;
+  EXPECT_NEAR(moving.drift_end, drift, 1e-9 * drift);
+
+  const DriftingOscillator at_rest = DriftingOscillatorRun(alpha, drift, false);
+  EXPECT_LT(at_rest.drift_end, 0.99 * drift) << "measured against rest, the drift is braked";
+}
+
 }  // namespace
 }  // namespace fibrenet
