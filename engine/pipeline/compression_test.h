@@ -7,8 +7,7 @@
 // pressure max_pressure, then goes back up at that full speed until the pressure is gone (or
 // the gap is the initial one). Contacts (van Wyk, with friction as the switches say) are on.
 // Quasi-static control as for the tensile test (test_rig.h), with the affine field
-// u_z = v_platen (z - z_floor) / gap and local damping instead of the drag by default
-// (CompressionQuasiStatic).
+// u_z = v_platen (z - z_floor) / gap.
 //
 // Definitions:
 //  strain                   (h0 - gap) / h0, h0 the gap at first contact [-]
@@ -44,16 +43,6 @@
 
 namespace fibrenet::pipeline {
 
-// The compression test's quasi-static defaults: local damping 0.7 (the customary value,
-// Cundall 1987) and no background drag, which resists the non-affine motion of the mat under
-// the platen (it carried 44-71% of the platen load on a pressed sheet: docs/virtual-tests.md).
-inline QuasiStaticSettings CompressionQuasiStatic() {
-  QuasiStaticSettings q;
-  q.local_damping = 0.7;
-  q.drag_time_fraction = 0.0;
-  return q;
-}
-
 struct CompressionSettings {
   double max_strain = 0.6;        // (0, 0.95]
   double max_pressure = 0.0;      // [Pa]; > 0: stop loading at this pressure (or max_strain)
@@ -69,8 +58,7 @@ struct CompressionSettings {
   int samples = 400;              // curve points over the loading
   bool attribution = false;       // run the three variants for the sources of hysteresis
   MaterialSwitches switches;
-  // Local damping instead of the drag: see CompressionQuasiStatic.
-  QuasiStaticSettings quasi_static = CompressionQuasiStatic();
+  QuasiStaticSettings quasi_static;
   std::int64_t max_steps = 20'000'000;
 
   std::string Validate() const;

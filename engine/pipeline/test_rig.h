@@ -13,14 +13,18 @@
 //    They act on relative motion only (zero for rigid motion) and take out ringing; their
 //    force at the loading rate is negligible against the elastic one (measured as part of
 //    the guard) and their dissipation is booked with the bond losses.
-//  - Local non-viscous damping (Cundall 1987; Physics::local_damping): each force component
-//    on a particle is reduced by a fraction of its magnitude while it drives the motion. It
-//    vanishes in equilibrium whatever the velocity, so unlike a drag it carries no load in
-//    a non-affine but steady deformation (a platen pushing the top of a loose mat).
+//  - Local non-viscous damping (Cundall 1987; Physics::local_damping), the default: each
+//    force component on a particle is reduced by a fraction of its magnitude while it drives
+//    the motion beyond the imposed affine field (SetDampingReference). It vanishes in
+//    equilibrium whatever the velocity, so unlike a drag it carries no load in a non-affine
+//    but steady deformation (a platen pushing the top of a loose mat). Measured against rest
+//    instead, it would brake the imposed stretch itself.
 //  - Background drag relative to the imposed affine velocity field (ApplyAffineDrag), with a
-//    relaxation time drag_time_fraction of the loading time. The guards bound both the
-//    kinetic energy (beyond the affine motion) against the external work and the share of
-//    the load the drag carries (DragVirial) against the measured load.
+//    relaxation time drag_time_fraction of the loading time; off by default. It damps the
+//    floppy modes of sparse networks, which carry too little force for local damping to
+//    touch, but it resists the non-affine motion of a real sheet.
+//  The guards bound both the kinetic energy (beyond the affine motion) against the external
+//  work and the share of the load the drag carries (DragVirial) against the measured load.
 #pragma once
 
 #include <cstdint>
@@ -51,10 +55,11 @@ struct QuasiStaticSettings {
   double loading_steps = 20000.0;
   double bond_damping_ratio = 0.1;       // fraction of critical damping, [0, 1]
   // Background drag relaxation time as a fraction of the loading time (ApplyAffineDrag);
-  // 0 = off.
-  double drag_time_fraction = 0.02;
-  // Local non-viscous damping coefficient (Physics::local_damping), [0, 1); 0 = off.
-  double local_damping = 0.0;
+  // 0 = off (the default: local damping instead, see the header comment).
+  double drag_time_fraction = 0.0;
+  // Local non-viscous damping coefficient (Physics::local_damping), [0, 1); 0 = off. The
+  // default 0.7 is the customary value (Cundall 1987).
+  double local_damping = 0.7;
   double kinetic_work_tolerance = 0.01;  // guard on kinetic energy / external work, (0, 1]
   double time_step_safety = 0.5;         // dt = safety * dt_crit, (0, 1]
 

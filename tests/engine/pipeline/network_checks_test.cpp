@@ -47,12 +47,13 @@ struct CoxPoint {
   bool quasi_static = false;
 };
 
-CoxPoint CoxRatio(int fibres, double loading_steps) {
+CoxPoint CoxRatio(int fibres, double loading_steps, double drag_time_fraction = 0.0) {
   const auto pn = MakePlanarNetwork(CoxSpec(fibres));
   TensileSettings s;
   s.max_strain = 0.002;
   s.switches.bond_failure = false;
   s.quasi_static.loading_steps = loading_steps;
+  s.quasi_static.drag_time_fraction = drag_time_fraction;
   s.samples = 40;
   const TensileResult r = RunTensileTest(pn.net, s);
   const AffineReference a = AffineStiffness(pn.net, LoadAxis::kMD);
@@ -72,17 +73,15 @@ CoxPoint CoxRatio(int fibres, double loading_steps) {
 }
 
 TEST(NetworkChecks, DenseNetworkApproachesCoxAndSparseOnesFallBelow) {
-  // Steps per loading. The background drag pulls the free particles towards the affine field
-  // (test_rig.h); on a network whose quasi-static path is not affine it carries a steady
-  // viscous share of the load, m M / tau * (non-affine velocity), and the motion off the affine
-  // field a steady kinetic energy. With automatic mass scaling both go as 1 / steps^2 and are
-  // largest against the load at the start of the modulus window (10% of the peak). At 2000 /
-  // 4000 / 8000 steps the dense, mid and sparse networks gave drag shares 0.071 / 0.026 /
-  // 0.008 and kinetic / work 0.003 / 0.005 / 0.011 against the 1% guard (dense at 4000: drag
-  // share 0.021; at 6500 0.010, falling about as steps^-1.5 there): loaded that fast the
-  // stress is up to 7% viscous.
+  // Steps per loading, with the rig's default local damping (measured against the affine
+  // stretch). The guard, kinetic / work, is largest at the start of the modulus window (10%
+  // of the peak): 0.0047 / 0.0033 for the dense and mid networks at 8000 / 7500 steps. The
+  // sparse one is floppy: its soft modes carry little force, so local damping, which scales
+  // with the force, barely touches them (0.0141 at 9500 steps, 0.0118 at 13000). It keeps the
+  // background drag as well (relaxation time 2% of the loading): 0.0081, with the drag
+  // carrying 0.6% of the load.
   const CoxPoint dense = CoxRatio(300, 8000), mid = CoxRatio(120, 7500),
-                 sparse = CoxRatio(60, 9500);
+                 sparse = CoxRatio(60, 9500, 0.02);
   EXPECT_GT(dense.crossings_per_fibre, 40.0);
   EXPECT_NEAR(dense.modulus_over_cox, 1.0, 0.10) << "C11/affine " << dense.c11_over_affine;
   EXPECT_GT(dense.modulus_over_cox, mid.modulus_over_cox);
@@ -101,7 +100,9 @@ TEST(NetworkChecks, DenseNetworkApproachesCoxAndSparseOnesFallBelow) {
     csv << "crossings_per_fibre,modulus_over_cox,c11_over_affine,kinetic_work_ratio,"
            "drag_load_ratio,fibres\n";
     for (int fibres : {30, 45, 60, 90, 120, 180, 240, 300, 400}) {
-      const CoxPoint p = CoxRatio(fibres, fibres >= 240 ? 8000 : fibres >= 120 ? 7500 : 9500);
+      const CoxPoint p = fibres >= 240   ? CoxRatio(fibres, 8000)
+                         : fibres >= 120 ? CoxRatio(fibres, 7500)
+                                         : CoxRatio(fibres, 9500, 0.02);
       csv << fmt::format("{},{},{},{},{},{}\n", p.crossings_per_fibre, p.modulus_over_cox,
                          p.c11_over_affine, p.kinetic_work_ratio, p.drag_load_ratio, fibres);
     }
