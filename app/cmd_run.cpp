@@ -1,9 +1,10 @@
-// `fibrenet run SCENE.toml [--out DIR] [--from SNAPSHOT] [--json] [--threads N]
+// `fibrenet run SCENE.toml [--out DIR] [--from SNAPSHOT] [--until STAGE] [--json] [--threads N]
 // [--set KEY=VALUE ...]`: one pipeline run, or its continuation from the snapshot of a
-// network stage that an earlier run wrote. Progress goes to stderr; metrics to stdout (one
+// network stage that an earlier run wrote, or its first stages only. Progress goes to stderr; metrics to stdout (one
 // JSON document with --json); files only under --out.
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
@@ -31,6 +33,7 @@ struct RunOptions {
   std::string scene;
   std::string out;
   std::string from;
+  std::string until;
   bool json = false;
   int threads = 0;
   std::vector<std::string> overrides;
@@ -68,11 +71,29 @@ campaigns::StageSnapshot LoadStart(const std::string& path, const pipeline::Pipe
   return start;
 }
 
+// The scene cut after the stage `until` names: the stages before it are the scene's own, so
+// their snapshots are the ones a whole run writes.
+void StopAfter(pipeline::PipelineSpec& spec, const std::string& until, const std::string& scene) {
+  std::vector<std::string> stages = {"forming"};
+  if (!spec.Consolidation().empty()) stages.push_back(spec.Consolidation());
+  if (spec.creping) stages.push_back("creping");
+  if (until == "forming") {
+    spec.pressing.reset();
+    spec.through_air.reset();
+  }
+  if (until != "creping") spec.creping.reset();
+  spec.tests = {};
+  if (std::find(stages.begin(), stages.end(), until) == stages.end())
+    throw InputError(fmt::format("--until {}: {} has no such stage; accepted: {}", until, scene,
+                                 fmt::join(stages, ", ")));
+}
+
 int Run(const RunOptions& o) {
   std::vector<campaigns::Override> overrides;
   for (const std::string& text : o.overrides) overrides.push_back(campaigns::ParseOverride(text));
   const std::string scene_text = campaigns::ReadSceneText(o.scene);
-  const pipeline::PipelineSpec spec = campaigns::ParseScene(scene_text, o.scene, overrides);
+  pipeline::PipelineSpec spec = campaigns::ParseScene(scene_text, o.scene, overrides);
+  if (!o.until.empty()) StopAfter(spec, o.until, o.scene);
   // The overrides are part of what made the networks, as the campaigns' stage keys have it.
   std::string identity = scene_text;
   for (const campaigns::Override& v : overrides)
@@ -135,6 +156,8 @@ void AddRunCommand(CLI::App& app, Context& context) {
   cmd->add_option("--from", options->from,
                   "Continue from a stage snapshot (DIR/snapshots/*.h5 of an earlier --out)")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--until", options->until,
+                  "Stop after this stage (forming, pressing, through_air or creping): no tests");
   cmd->add_flag("--json", options->json, "Print one JSON document on stdout");
   cmd->add_option("--threads", options->threads, "OpenMP threads (default: all)")
       ->check(CLI::Range(1, 1024));

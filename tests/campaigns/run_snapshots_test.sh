@@ -2,7 +2,7 @@
 # `fibrenet run --out` writes a snapshot per network stage (HDF5 + XDMF), the last one
 # coloured by the fibres' strain energy at the tensile peak; `fibrenet run --from` continues
 # from a snapshot and ends where the uninterrupted run ended (from a creping snapshot it runs
-# only the virtual tests, on the creped sheet); snapshots that do not fit the scene are
+# only the virtual tests, on the creped sheet); `--until` stops after a stage; snapshots that do not fit the scene are
 # refused with exit code 2. Usage: run_snapshots_test.sh FIBRENET TINY_SCENE
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 fibrenet=$1
@@ -46,6 +46,26 @@ assert a["stages"][0]["metrics"] == b["stages"][0]["metrics"], "forming report n
 PY
 [ -s cont/snapshots/pressing.h5 ] || fail "the continued run wrote no pressing snapshot"
 [ ! -e cont/snapshots/forming.h5 ] || fail "the continued run rewrote the forming snapshot"
+
+# --until pressing stops before the tests, with the same pressing report and snapshot as the
+# whole run, so that the tests can run later from it; a stage the scene lacks is refused.
+"$fibrenet" run scene.toml --until pressing --out upto --json > upto.json 2> upto.err
+python3 - full.json upto.json <<'PY' || fail "--until pressing differs from the whole run's first stages"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert [s["name"] for s in b["stages"]] == ["forming", "pressing"], b["stages"]
+assert "tensile_strength_N_per_m" not in b["metrics"], "the tests ran"
+assert a["stages"][1]["metrics"] == b["stages"][1]["metrics"], "pressing differs"
+PY
+/usr/bin/python3 - full/snapshots/pressing.h5 upto/snapshots/pressing.h5 <<'PY' \
+  || fail "--until pressing wrote another pressing snapshot"
+import sys, h5py, numpy
+a, b = (h5py.File(p, "r") for p in sys.argv[1:3])
+for name in ("particles/x", "particles/q", "bonds/ij", "bonds/L0"):
+    assert numpy.array_equal(a[name][()], b[name][()]), name
+PY
+expect_exit 2 "--until creping: scene.toml has no such stage; accepted: forming, pressing" \
+  "$fibrenet" run scene.toml --until creping
 
 # Creped: the tests run on the creped sheet from its snapshot give the uninterrupted run's
 # metrics, and the creping report is carried over.
