@@ -3,28 +3,13 @@
 #include <iostream>
 
 #include <CLI/CLI.hpp>
-#if defined(__SSE2__)
-#include <xmmintrin.h>
-#endif
 
 #include "app/commands.h"
 #include "engine/core/error.h"
-
-// Flush denormal results to zero and treat denormal inputs as zero. Quantities that decay
-// geometrically in a quasi-static test (damped relative motion) reach the denormal range,
-// where each operation takes a slow microcode path: the ZD compression of the generic tissue
-// ran at half the bench's rate. Set before any thread starts; threads inherit it.
-namespace {
-void FlushDenormalsToZero() {
-#if defined(__SSE2__)
-  constexpr unsigned kDenormalsAreZero = 0x0040;  // MXCSR bit DAZ
-  _mm_setcsr(_mm_getcsr() | _MM_FLUSH_ZERO_ON | kDenormalsAreZero);
-#endif
-}
-}  // namespace
+#include "engine/core/float_mode.h"
 
 int main(int argc, char** argv) {
-  FlushDenormalsToZero();
+  fibrenet::FlushDenormalsToZero();  // engine/core/float_mode.h: why
   CLI::App app{"fibrenet: DEM design platform for soft fibre networks", "fibrenet"};
   app.set_version_flag("--version", std::string(FIBRENET_VERSION) + " (" FIBRENET_GIT_COMMIT ")");
   app.require_subcommand(1);

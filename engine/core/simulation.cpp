@@ -6,12 +6,14 @@
 
 #include "engine/core/diagnose.h"
 #include "engine/core/error.h"
+#include "engine/core/float_mode.h"
 #include "engine/core/quaternion.h"
 #include "engine/core/time_step.h"
 
 namespace fibrenet {
 
 std::string Simulation::Prepare() {
+  FlushDenormalsToZero();
   Particles& p = w_.particles;
   const SerialWhenSmall serial(p.size());
   if (w_.settings.skin <= 0.0 && p.size() > 0) {

@@ -1,7 +1,7 @@
 // The core loop (engine/core/simulation.h, neighbour_list.h, time_step.h): the Verlet list
 // against a brute-force search, its rebuild on displacement, the time-step policy, the
-// error on a non-finite state, determinism for a given thread count, and local damping
-// against its analytic decay.
+// error on a non-finite state, determinism for a given thread count, local damping against
+// its analytic decay, and the floating-point mode of the threads.
 #include "engine/core/simulation.h"
 
 #include <algorithm>
@@ -17,6 +17,7 @@
 
 #include "engine/core/energy.h"
 #include "engine/core/error.h"
+#include "engine/core/float_mode.h"
 #include "engine/core/parallel.h"
 #include "engine/core/time_step.h"
 
@@ -386,6 +387,28 @@ TEST(Determinism, SameSetupAndThreadCountGiveBitIdenticalPositions) {
   EXPECT_GT(runs[0][0].norm(), 0.0);
   ASSERT_EQ(runs[0].size(), runs[1].size());
   EXPECT_EQ(std::memcmp(runs[0].data(), runs[1].data(), runs[0].size() * sizeof(Vec3)), 0);
+}
+
+// Preparing a simulation makes every thread of the team flush denormal results to zero
+// (engine/core/float_mode.h): a product below the smallest normal double comes out as 0.
+TEST(FloatMode, PrepareFlushesDenormalsToZeroOnEveryThread) {
+  const int saved = ThreadCount();
+  SetThreadCount(2);
+  World w = ChainWorld();
+  Simulation sim(w);
+  sim.Prepare();
+  int threads = 0, flushing = 0, zero_products = 0;
+  volatile double smallest_normal = std::numeric_limits<double>::min();
+#pragma omp parallel reduction(+ : threads, flushing, zero_products)
+  {
+    threads += 1;
+    flushing += FlushesDenormals() ? 1 : 0;
+    zero_products += smallest_normal * 0.25 == 0.0 ? 1 : 0;
+  }
+  SetThreadCount(saved);
+  EXPECT_GE(threads, 1);
+  EXPECT_EQ(flushing, threads);
+  EXPECT_EQ(zero_products, threads);
 }
 
 // The skin only decides how often the list is built and how many pairs it checks: pairs
