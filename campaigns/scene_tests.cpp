@@ -67,6 +67,10 @@ pipeline::CompressionSettings ReadCompression(TableReader& r, pipeline::Compress
       r.Number("modulus_pressure_hi_kPa", c.modulus_pressure_hi * 1e-3, OpenClosed(0, 1e5), "kPa") * 1e3;
   c.min_speed_fraction = r.Number("min_speed_fraction", c.min_speed_fraction, OpenClosed(0, 1),
                                   "of the platen speed (1 = constant speed)");
+  c.approach_speed_fraction = r.Number("approach_speed_fraction", c.approach_speed_fraction,
+                                       Closed(0, 1), "of the platen speed (0 = no approach)");
+  c.approach_pressure_fraction = r.Number("approach_pressure_fraction", c.approach_pressure_fraction,
+                                          Closed(0, 1), "of modulus_pressure_lo_kPa");
   c.residual_pressure_fraction =
       r.Number("residual_pressure_fraction", c.residual_pressure_fraction, Open(0, 1), "of the peak");
   c.samples = static_cast<int>(r.Integer("samples", c.samples, 10, 100000));

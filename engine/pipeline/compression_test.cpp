@@ -80,7 +80,11 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
     const double rule = speed * std::sqrt(allowed * std::max(work, 0.0) / kinetic_full);
     return std::clamp(rule, s.min_speed_fraction * speed, speed);
   };
-  w.walls[1].vz = -loading_speed(0.0);
+  // The approach ends for good the first time the pressure reaches its end.
+  const double approach_end = s.approach_pressure_fraction * s.modulus_pressure_lo;
+  bool approaching = s.approach_speed_fraction > s.min_speed_fraction;
+  w.walls[1].vz = -(approaching ? std::max(loading_speed(0.0), s.approach_speed_fraction * speed)
+                                : loading_speed(0.0));
   for (std::size_t i = 0; i < p.size(); ++i) p.v[i] = field().At(p.x[i]);
   // A new platen velocity, with the affine part of the particles' motion changed to match.
   auto set_platen_velocity = [&](double vz) {
@@ -127,7 +131,11 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
     ++step;
     strain = (run.h0 - (w.walls[1].z - z_lo)) / run.h0;
     pressure = 0.5 * (w.walls[1].reaction.z() - w.walls[0].reaction.z()) / area;
-    if (sign < 0 && -w.walls[1].vz < speed) {
+    if (approaching && pressure >= approach_end) {
+      approaching = false;
+      set_platen_velocity(-loading_speed(w.walls[0].work + w.walls[1].work));
+    }
+    if (sign < 0 && !approaching && -w.walls[1].vz < speed) {
       const double faster = loading_speed(w.walls[0].work + w.walls[1].work);
       if (faster > -1.01 * w.walls[1].vz) set_platen_velocity(-faster);
     }
@@ -145,7 +153,9 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
     if (step % every == 0 || turn || stop) sample();
     if (stop) break;
     if (turn) {
-      set_platen_velocity(speed);
+      // Back up at the speed it came down with, as the instruments do (KES-FB3): a jump to the
+      // full speed after a slow toe would throw the sheet's scaled mass at the platen.
+      set_platen_velocity(-w.walls[1].vz);
       sign = +1;
     }
     if (progress.report && clock.Seconds() >= next_report) {
@@ -198,6 +208,11 @@ LoopFigures Analyse(const Curve& c, const CompressionSettings& s, double h0) {
       f.guard = std::max(f.guard, ke[k] / wk[k]);
       f.drag_guard = std::max(f.drag_guard, dw[k]);
     }
+  // The hysteresis and the residual strain are read on the unloading branch: its kinetic
+  // energy is bounded too, against the work the loading put in, down to the window start.
+  const double work_in = turn > 0 ? wk[turn - 1] : 0.0;
+  for (std::size_t k = turn; k < e.size() && work_in > 0.0; ++k)
+    if (p[k] >= f.window_lo) f.guard = std::max(f.guard, ke[k] / work_in);
   return f;
 }
 
@@ -221,6 +236,12 @@ std::string CompressionSettings::Validate() const {
   if (!(min_speed_fraction > 0.0 && min_speed_fraction <= 1.0))
     return fmt::format("min_speed_fraction = {}: must lie in (0, 1] (1 = constant speed)",
                        min_speed_fraction);
+  if (!(approach_speed_fraction >= 0.0 && approach_speed_fraction <= 1.0))
+    return fmt::format("approach_speed_fraction = {}: must lie in [0, 1] (0 = no approach)",
+                       approach_speed_fraction);
+  if (!(approach_pressure_fraction >= 0.0 && approach_pressure_fraction <= 1.0))
+    return fmt::format("approach_pressure_fraction = {}: must lie in [0, 1] of "
+                       "modulus_pressure_lo", approach_pressure_fraction);
   if (samples < 10 || samples > 100000)
     return fmt::format("samples = {}: must lie in [10, 100000]", samples);
   if (max_steps < 1) return fmt::format("max_steps = {}: must be >= 1", max_steps);
