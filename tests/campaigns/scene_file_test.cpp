@@ -60,6 +60,7 @@ TEST(SceneFile, ExampleScenesLoad) {
   EXPECT_DOUBLE_EQ(tissue.sheet.basis_weight, 0.020);
   EXPECT_DOUBLE_EQ(tissue.sheet.fibres.length.Mean(), 1.92e-3);
   EXPECT_DOUBLE_EQ(tissue.pressing->target_thickness, 200e-6);
+  EXPECT_TRUE(tissue.tests.tensile && tissue.tests.compression && tissue.tests.softness);
   EXPECT_DOUBLE_EQ(LoadScene(kScenes + "/generic-tissue-10mm.toml").sheet.Lx, 10e-3);
 }
 
