@@ -242,11 +242,7 @@ std::string CompressionSettings::Validate() const {
   if (!(approach_pressure_fraction >= 0.0 && approach_pressure_fraction <= 1.0))
     return fmt::format("approach_pressure_fraction = {}: must lie in [0, 1] of "
                        "modulus_pressure_lo", approach_pressure_fraction);
-  if (samples < 10 || samples > 100000)
-    return fmt::format("samples = {}: must lie in [10, 100000]", samples);
-  if (max_steps < 1) return fmt::format("max_steps = {}: must be >= 1", max_steps);
-  if (std::string why = switches.Validate(); !why.empty()) return why;
-  return quasi_static.Validate();
+  return ValidateLoading(samples, max_steps, switches, quasi_static);
 }
 
 double CompressionResult::Value(const std::string& name) const {

@@ -43,11 +43,7 @@ std::string TensileSettings::Validate() const {
         modulus_window_hi <= 1.0))
     return fmt::format("modulus_window = [{}, {}]: need 0 <= lo < hi <= 1 (fractions of the peak)",
                        modulus_window_lo, modulus_window_hi);
-  if (samples < 10 || samples > 100000)
-    return fmt::format("samples = {}: must lie in [10, 100000]", samples);
-  if (max_steps < 1) return fmt::format("max_steps = {}: must be >= 1", max_steps);
-  if (std::string why = switches.Validate(); !why.empty()) return why;
-  return quasi_static.Validate();
+  return ValidateLoading(samples, max_steps, switches, quasi_static);
 }
 
 double TensileResult::Value(const std::string& name) const {

@@ -36,6 +36,15 @@ std::string QuasiStaticSettings::Validate() const {
   return {};
 }
 
+std::string ValidateLoading(int samples, std::int64_t max_steps, const MaterialSwitches& s,
+                            const QuasiStaticSettings& q) {
+  if (samples < 10 || samples > 100000)
+    return fmt::format("samples = {}: must lie in [10, 100000]", samples);
+  if (max_steps < 1) return fmt::format("max_steps = {}: must be >= 1", max_steps);
+  if (std::string why = s.Validate(); !why.empty()) return why;
+  return q.Validate();
+}
+
 void ApplyTestPhysics(Network& net, const MaterialSwitches& s) {
   World& w = net.world;
   w.physics.gravity = false;

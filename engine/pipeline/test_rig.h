@@ -66,6 +66,11 @@ struct QuasiStaticSettings {
   std::string Validate() const;
 };
 
+// The checks every loading test shares: curve samples in [10, 100000], a step cap >= 1, the
+// switches and the quasi-static control. Empty when valid.
+std::string ValidateLoading(int samples, std::int64_t max_steps, const MaterialSwitches& s,
+                            const QuasiStaticSettings& q);
+
 // Turns the network's world into a test world: gravity, drag, applied loads and walls off,
 // the switches applied to every bond type. Contacts stay as the network had them.
 void ApplyTestPhysics(Network& net, const MaterialSwitches& s);
