@@ -66,7 +66,7 @@ TEST(Softness, IndexIsOneHundredAtTheReferenceAndRisesAsTheSheetSoftens) {
 }
 
 // With the masses scaled for the loading, a sheet moving at the platen's full speed holds far
-// more kinetic energy than the platen puts in during the toe (kinetic / platen work 16.7
+// more kinetic energy than the platen puts in during the toe (kinetic / platen work 8.7
 // here); the slow toe keeps the guard (0.006). The faster approach below the modulus window
 // saves steps and changes neither the guard's verdict nor the modulus beyond 5%.
 TEST(ZdCompression, TheSlowToeKeepsAPressedSheetQuasiStatic) {
