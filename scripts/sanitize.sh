@@ -40,7 +40,7 @@ slow=(
   'Pipeline\..*'
   'VirtualTests\..*'
   'NetworkChecks\..*'
-  'ZdCompression\.(StopsAtTheTargetPressure|TheSlowToeKeepsAPressedSheetQuasiStatic)'
+  'ZdCompression\.(StopsAtTheTargetPressure|TheSlowToeKeepsAPressedSheetQuasiStatic|ALoopStoppedAtALowPressureReturnsNoMoreWorkThanItTook)'
   'Relief\.SphereRestsOnePocketDepthLowerOverAPocket'
   'Creping\..*'
   'Validation/BeamCases\..*/(cantilever_elastica|euler_buckling|bending_frequency) .*'
