@@ -1,7 +1,7 @@
-// `fibrenet run SCENE.toml [--out DIR] [--from SNAPSHOT] [--until STAGE] [--json] [--threads N]
-// [--set KEY=VALUE ...]`: one pipeline run, or its continuation from the snapshot of a
-// network stage that an earlier run wrote, or its first stages only. Progress goes to stderr; metrics to stdout (one
-// JSON document with --json); files only under --out.
+// `fibrenet run SCENE.toml [--out DIR] [--from SNAPSHOT] [--until STAGE] [--json]
+// [--threads N] [--set KEY=VALUE ...]`: one pipeline run, or its continuation from the
+// snapshot of a network stage that an earlier run wrote, or its first stages only. Progress
+// goes to stderr; metrics to stdout (one JSON document with --json); files only under --out.
 #include <unistd.h>
 
 #include <algorithm>

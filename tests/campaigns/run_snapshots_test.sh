@@ -2,8 +2,8 @@
 # `fibrenet run --out` writes a snapshot per network stage (HDF5 + XDMF), the last one
 # coloured by the fibres' strain energy at the tensile peak; `fibrenet run --from` continues
 # from a snapshot and ends where the uninterrupted run ended (from a creping snapshot it runs
-# only the virtual tests, on the creped sheet); `--until` stops after a stage; snapshots that do not fit the scene are
-# refused with exit code 2. Usage: run_snapshots_test.sh FIBRENET TINY_SCENE
+# only the virtual tests, on the creped sheet); `--until` stops after a stage; snapshots
+# that do not fit the scene are refused with exit code 2. Usage: run_snapshots_test.sh FIBRENET TINY_SCENE
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 fibrenet=$1
 scene=$2
