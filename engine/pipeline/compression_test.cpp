@@ -103,6 +103,7 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
   run.curve.name = name;
   run.curve.columns = {"strain",        "pressure_Pa", "gap_m",        "kinetic_J",
                        "platen_work_J", "drag_load_ratio", "bonds_broken", "branch"};
+  auto platen_work = [&] { return w.walls[0].work + w.walls[1].work; };
   // Share of the platen load carried by the drag: |drag virial| / (platen force x gap).
   auto drag_share = [&] {
     const double gap = w.walls[1].z - z_lo, lever = w.walls[1].reaction.z() * gap;
@@ -111,7 +112,7 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
   double strain = 0.0, pressure = 0.0, peak = 0.0, strain_at_peak = 0.0;
   auto sample = [&] {
     run.curve.Add({strain, pressure, w.walls[1].z - z_lo, FluctuatingKineticEnergy(w, held, field()),
-                   w.walls[0].work + w.walls[1].work, drag_share(),
+                   platen_work(), drag_share(),
                    static_cast<double>(w.bonds.events.size()),
                    sign < 0 ? 0.0 : 1.0});
   };
@@ -133,10 +134,10 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
     pressure = 0.5 * (w.walls[1].reaction.z() - w.walls[0].reaction.z()) / area;
     if (approaching && pressure >= approach_end) {
       approaching = false;
-      set_platen_velocity(-loading_speed(w.walls[0].work + w.walls[1].work));
+      set_platen_velocity(-loading_speed(platen_work()));
     }
     if (sign < 0 && !approaching && -w.walls[1].vz < speed) {
-      const double faster = loading_speed(w.walls[0].work + w.walls[1].work);
+      const double faster = loading_speed(platen_work());
       if (faster > -1.01 * w.walls[1].vz) set_platen_velocity(-faster);
     }
     if (sign < 0 && pressure > peak) {
