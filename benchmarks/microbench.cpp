@@ -48,10 +48,19 @@ std::vector<BondCase> BondBatch() {
   return batch;
 }
 
-// One six-mode bond evaluation with the fibre-bed parameters (elastic, no failure).
+// One six-mode bond evaluation with the fibre-bed parameters: arg 0 elastic, no failure;
+// arg 1 as a fibre-fibre bond in a virtual test (Hill failure, dashpots in every mode).
 void BM_EvaluateBond(benchmark::State& state) {
   std::vector<BondCase> batch = BondBatch();
-  const BeamBondParams p = BeamBondParams::FromBeam(10e9, 3e9, kR, kL);
+  BeamBondParams p = BeamBondParams::FromBeam(10e9, 3e9, kR, kL);
+  if (state.range(0) != 0) {
+    p.failure = BondFailure::kHill;
+    p.F_r0 = p.F_s0 = 10.0;  // [N] strong enough that no bond of the batch breaks
+    p.HillDefaults();
+    p.damping_n = p.damping_s = 1e-6;
+    p.damping_rot = 1e-15;
+  }
+  state.SetLabel(state.range(0) != 0 ? "hill+damping" : "elastic");
   const double dt = 1e-9;
   for (auto _ : state) {
     for (BondCase& c : batch) {
@@ -61,7 +70,7 @@ void BM_EvaluateBond(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * kBatch);
 }
-BENCHMARK(BM_EvaluateBond);
+BENCHMARK(BM_EvaluateBond)->Arg(0)->Arg(1);
 
 // One van Wyk contact with damping and, for arg 1, Cundall-Strack friction with history.
 void BM_EvaluateContact(benchmark::State& state) {

@@ -11,6 +11,10 @@ namespace fibrenet {
 // (0.2 rad): a bond's relative rotation almost always lies below it, and the series, exact to
 // rounding there, spare the square root, atan2, sin and cos of the closed forms.
 inline constexpr double kBondSeriesAngle2 = 0.04;
+// Below this one (0.032 rad), where nearly every bond of a loaded sheet lies, shorter series
+// of the same functions are already exact to rounding: they cut the chain of dependent
+// multiplications that each bond evaluation waits on.
+inline constexpr double kShortSeriesAngle2 = 1e-3;
 
 // Rotation vector (axis * angle, radians) of a unit quaternion, angle in [0, pi].
 inline Vec3 RotationVector(const Quat& q) {
@@ -19,17 +23,22 @@ inline Vec3 RotationVector(const Quat& q) {
   const Vec3 v = sign * q.vec();
   const double w = sign * q.w();
   const double s2 = v.squaredNorm();
-  // angle = 2 atan(t), t = |v| / w. Below t = 0.1 (0.2 rad) the series of atan(t) / t to t^14
-  // is exact to rounding: the first term left out, t^16 / 17, is below 6e-18.
+  // angle = 2 atan(t), t = |v| / w, t^2 about angle^2 / 4. Below t = 0.1 (0.2 rad) the series
+  // of atan(t) / t to t^14 is exact to rounding: the first term left out, t^16 / 17, is below
+  // 6e-18; below t^2 = kShortSeriesAngle2 / 4 the series to t^8 is (t^10 / 11 < 1e-19).
   if (s2 < 0.25 * kBondSeriesAngle2 * w * w) {
-    const double t2 = s2 / (w * w);
+    const double inv_w = 1.0 / w;
+    const double t2 = s2 * inv_w * inv_w;
     const double atan_t_over_t =
-        1.0 - t2 * (1.0 / 3.0 -
-                    t2 * (1.0 / 5.0 -
-                          t2 * (1.0 / 7.0 -
-                                t2 * (1.0 / 9.0 -
-                                      t2 * (1.0 / 11.0 - t2 * (1.0 / 13.0 - t2 / 15.0))))));
-    return v * ((2.0 / w) * atan_t_over_t);
+        t2 < 0.25 * kShortSeriesAngle2
+            ? 1.0 - t2 * (1.0 / 3.0 - t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0 - t2 / 9.0)))
+            : 1.0 - t2 * (1.0 / 3.0 -
+                          t2 * (1.0 / 5.0 -
+                                t2 * (1.0 / 7.0 -
+                                      t2 * (1.0 / 9.0 -
+                                            t2 * (1.0 / 11.0 -
+                                                  t2 * (1.0 / 13.0 - t2 / 15.0))))));
+    return v * ((2.0 * inv_w) * atan_t_over_t);
   }
   const double s = std::sqrt(s2);
   return v * (2.0 * std::atan2(s, w) / s);
@@ -61,9 +70,10 @@ inline Quat QuatFromRotationVector(const Vec3& phi) {
 inline Quat HalfRotation(const Quat& q) {
   const double sign = q.w() < 0.0 ? -1.0 : 1.0;
   Quat h(1.0 + sign * q.w(), sign * q.x(), sign * q.y(), sign * q.z());
-  const double n = h.norm();
-  if (n < 1e-12) return Quat(0.0, 1.0, 0.0, 0.0);  // a half turn: any perpendicular axis
-  h.coeffs() /= n;
+  // |h|^2 = (1 + |w|)^2 + |v|^2 = 2 (1 + |w|) for a unit q: one square root and one division.
+  const double n2 = 2.0 * h.w();
+  if (n2 < 1e-24) return Quat(0.0, 1.0, 0.0, 0.0);  // a half turn: any perpendicular axis
+  h.coeffs() *= 1.0 / std::sqrt(n2);
   return h;
 }
 
@@ -83,8 +93,13 @@ struct LeftJacobianCoefficients {
 };
 
 // c1 and c2 at a2 = |phi|^2. Below kBondSeriesAngle2 their series to a^10 are exact to
-// rounding (the terms left out are below 1e-19), where the closed forms lose digits.
+// rounding (the terms left out are below 1e-19), where the closed forms lose digits; below
+// kShortSeriesAngle2 so are the series to a^6 (the terms left out below 2e-18 relative).
 inline LeftJacobianCoefficients LeftJacobianCoefficientsAt(double a2) {
+  if (a2 < kShortSeriesAngle2) {
+    return {0.5 - a2 * (1.0 / 24.0 - a2 * (1.0 / 720.0 - a2 / 40320.0)),
+            1.0 / 6.0 - a2 * (1.0 / 120.0 - a2 * (1.0 / 5040.0 - a2 / 362880.0))};
+  }
   if (a2 < kBondSeriesAngle2) {
     return {0.5 - a2 * (1.0 / 24.0 -
                         a2 * (1.0 / 720.0 -
@@ -98,8 +113,11 @@ inline LeftJacobianCoefficients LeftJacobianCoefficientsAt(double a2) {
   return {(1.0 - std::cos(a)) / a2, (a - std::sin(a)) / (a2 * a)};
 }
 
-// c at a2 = |phi|^2; below kBondSeriesAngle2 its series to a^10 (the next term is below 1e-19).
+// c at a2 = |phi|^2; below kBondSeriesAngle2 its series to a^10 (the next term is below 1e-19),
+// below kShortSeriesAngle2 its series to a^6 (the next term below 3e-18 relative).
 inline double InverseLeftJacobianCoefficientAt(double a2) {
+  if (a2 < kShortSeriesAngle2)
+    return 1.0 / 12.0 + a2 * (1.0 / 720.0 + a2 * (1.0 / 30240.0 + a2 / 1209600.0));
   if (a2 < kBondSeriesAngle2) {
     return 1.0 / 12.0 +
            a2 * (1.0 / 720.0 +
@@ -142,6 +160,19 @@ inline Vec3 LeftJacobianTransposeTimes(const Vec3& phi, const LeftJacobianCoeffi
 inline Vec3 InverseLeftJacobianTransposeTimes(const Vec3& phi, double c, const Vec3& v) {
   const Vec3 pv = phi.cross(v);
   return v + 0.5 * pv + c * phi.cross(pv);
+}
+
+// J_l^-T(phi) J_l^T(phi / 2) v as one operator (a bond shares its force couple through it):
+// both factors are polynomials in the cross-product matrix K of phi, and K^3 = -a^2 K, so the
+// product is I + alpha K + beta K^2. c_inverse is InverseLeftJacobianCoefficientAt(a2) and
+// half the coefficients LeftJacobianCoefficientsAt(a2 / 4).
+inline Vec3 InverseTimesHalfLeftJacobianTransposeTimes(const Vec3& phi, double a2, double c_inverse,
+                                                       const LeftJacobianCoefficients& half,
+                                                       const Vec3& v) {
+  const double alpha = 0.5 - 0.5 * half.c1 - a2 * (0.125 * half.c2 - 0.5 * c_inverse * half.c1);
+  const double beta = c_inverse + 0.25 * (half.c2 - half.c1) - 0.25 * a2 * c_inverse * half.c2;
+  const Vec3 pv = phi.cross(v);
+  return v + alpha * pv + beta * phi.cross(pv);
 }
 
 }  // namespace fibrenet

@@ -213,13 +213,10 @@ inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, B
   // The force pair f_i, -f_i is offset by d: its moment is shared so that angular momentum
   // is conserved exactly (see above; damping forces share it the same way).
   const Vec3 moment = g.d.cross(f_i);
-  const Vec3 half_theta = 0.5 * theta;
   const Vec3 moment_j =
-      A * (0.5 * InverseLeftJacobianTransposeTimes(
-                     theta, c_inverse,
-                     LeftJacobianTransposeTimes(half_theta,
-                                                LeftJacobianCoefficientsAt(0.25 * theta2),
-                                                A.transpose() * moment)));
+      A * (0.5 * InverseTimesHalfLeftJacobianTransposeTimes(
+                     theta, theta2, c_inverse, LeftJacobianCoefficientsAt(0.25 * theta2),
+                     A.transpose() * moment));
   r.force_i = f_i;
   r.torque_i = m_world + couple + (moment - moment_j);
   r.torque_j = -m_world - couple + moment_j;

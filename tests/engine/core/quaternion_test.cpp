@@ -1,7 +1,8 @@
 // The rotation helpers switch from Taylor series to closed forms at an angle (QuatFromRotation-
 // Vector at kSmallRotation2, the size of every step's rotation; RotationVector and the SO(3)
-// Jacobians at kBondSeriesAngle2, beyond a bond's usual relative rotation). On both sides of
-// each switch they agree with a long double reference to rounding.
+// Jacobians at kBondSeriesAngle2, beyond a bond's usual relative rotation, and from short to
+// long series at kShortSeriesAngle2). On both sides of each switch they agree with a long
+// double reference to rounding.
 #include "engine/core/quaternion.h"
 
 #include <cmath>
@@ -39,10 +40,12 @@ TEST(Quaternion, RotationVectorMatchesTheClosedFormOnBothSidesOfTheSeriesLimit) 
   }
 }
 
-// Angles [rad] on both sides of the series limit `limit`, from tiny to near a half turn.
+// Angles [rad] on both sides of the series limit `limit` and of the short series' limit, from
+// tiny to near a half turn.
 std::vector<double> AnglesAround(double limit) {
-  return {1e-12, 1e-8, 1e-4, 1e-2, 0.5 * limit, 0.999 * limit, limit, 1.001 * limit,
-          0.5,   1.0,  2.0,  3.0};
+  const double short_limit = std::sqrt(kShortSeriesAngle2);
+  return {1e-12, 1e-8, 1e-4, 1e-2, 0.999 * short_limit, short_limit, 1.001 * short_limit,
+          0.5 * limit, 0.999 * limit, limit, 1.001 * limit, 0.5, 1.0, 2.0, 3.0};
 }
 
 TEST(Quaternion, RotationVectorMatchesAtan2OnBothSidesOfTheSeriesLimit) {
@@ -113,6 +116,22 @@ TEST(Quaternion, InverseLeftJacobianInvertsTheLeftJacobianOnBothSidesOfTheSeries
                InverseLeftJacobian(phi).transpose() * v)
                   .norm(),
               1e-15 * v.norm());
+  }
+}
+
+TEST(Quaternion, TheCombinedJacobianOperatorEqualsItsTwoFactorsAppliedInTurn) {
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> gauss;
+  for (double angle : AnglesAround(std::sqrt(kBondSeriesAngle2))) {
+    const Vec3 phi = angle * Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    const Vec3 v(gauss(rng), gauss(rng), gauss(rng));
+    const double a2 = phi.squaredNorm();
+    const double c = InverseLeftJacobianCoefficientAt(a2);
+    const LeftJacobianCoefficients half = LeftJacobianCoefficientsAt(0.25 * a2);
+    const Vec3 in_turn =
+        InverseLeftJacobianTransposeTimes(phi, c, LeftJacobianTransposeTimes(0.5 * phi, half, v));
+    const Vec3 combined = InverseTimesHalfLeftJacobianTransposeTimes(phi, a2, c, half, v);
+    EXPECT_LT((combined - in_turn).norm(), 1e-15 * v.norm()) << "angle " << angle;
   }
 }
 
