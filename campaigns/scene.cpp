@@ -63,10 +63,12 @@ void ApplyOverride(toml::table& root, const Override& o, const std::string& file
       const bool setting_table =
           std::find(kSettingTables.begin(), kSettingTables.end(), c) != kSettingTables.end();
       if (k > 0)
-        fail(fmt::format("the scene has no [{}] table{}", prefix,
-                         prefix == "pressing.bonding" ? ": an override cannot enable bonding" : ""));
-      if (c == "pressing" || c == "through_air" || c == "creping" || std::find(SceneTestTables().begin(), SceneTestTables().end(), c) !=
-                                 SceneTestTables().end())
+        fail(
+            fmt::format("the scene has no [{}] table{}", prefix,
+                        prefix == "pressing.bonding" ? ": an override cannot enable bonding" : ""));
+      if (c == "pressing" || c == "through_air" || c == "creping" ||
+          std::find(SceneTestTables().begin(), SceneTestTables().end(), c) !=
+              SceneTestTables().end())
         fail(fmt::format("the scene has no [{}] table: an override cannot enable a stage", c));
       if (!setting_table) {
         const std::string near = optimizer::ClosestMatch(c, kRootKeys);
@@ -135,7 +137,8 @@ ContactParams ReadContact(TableReader& r) {
 pipeline::FormingSettings ReadForming(TableReader& r) {
   pipeline::FormingSettings f;
   f.consistency = r.Number("consistency_percent", 1.0, Open(0, 100), "%") * 0.01;
-  f.suspension_density = r.Number("suspension_density_kg_per_m3", 1000, OpenClosed(0, 1e5), "kg/m^3");
+  f.suspension_density =
+      r.Number("suspension_density_kg_per_m3", 1000, OpenClosed(0, 1e5), "kg/m^3");
   f.drop_gap = r.Number("drop_gap_mm", 0, Closed(0, 1000), "mm") * 1e-3;
   f.orientation = r.Choice("orientation", "isotropic", {"isotropic", "planar"}) == "planar"
                       ? pipeline::Orientation::kPlanar
@@ -171,16 +174,21 @@ pipeline::BondingSettings ReadBonding(TableReader& r) {
 // A relief pattern (embossing bosses, drying-fabric pockets); `height_key` names its height.
 pipeline::ReliefPattern ReadRelief(TableReader& r, const std::string& height_key) {
   pipeline::ReliefPattern p;
-  p.shape = r.Choice("pattern", "dots", {"dots", "lines"}) == "lines" ? pipeline::ReliefShape::kLines
-                                                                      : pipeline::ReliefShape::kDots;
+  p.shape = r.Choice("pattern", "dots", {"dots", "lines"}) == "lines"
+                ? pipeline::ReliefShape::kLines
+                : pipeline::ReliefShape::kDots;
   p.pitch = r.Number("pitch_um", 500, OpenClosed(0, 1e5), "um") * 1e-6;
   p.size = r.Number("size_um", 250, OpenClosed(0, 1e5), "um") * 1e-6;
   p.height = r.RequiredNumber(height_key, OpenClosed(0, 1e4), "um") * 1e-6;
   p.flank = r.Number("flank_um", 50, OpenClosed(0, 1e5), "um") * 1e-6;
-  if (p.size > p.pitch) r.Fail("size_um", fmt::format("{:g} um is wider than pitch_um = {:g} um; "
-                                                      "accepted (0, pitch_um]", p.size * 1e6, p.pitch * 1e6));
-  if (p.flank > p.size) r.Fail("flank_um", fmt::format("{:g} um is wider than size_um = {:g} um; "
-                                                       "accepted (0, size_um]", p.flank * 1e6, p.size * 1e6));
+  if (p.size > p.pitch)
+    r.Fail("size_um", fmt::format("{:g} um is wider than pitch_um = {:g} um; "
+                                  "accepted (0, pitch_um]",
+                                  p.size * 1e6, p.pitch * 1e6));
+  if (p.flank > p.size)
+    r.Fail("flank_um", fmt::format("{:g} um is wider than size_um = {:g} um; "
+                                   "accepted (0, size_um]",
+                                   p.flank * 1e6, p.size * 1e6));
   r.Finish();
   return p;
 }
@@ -188,7 +196,8 @@ pipeline::ReliefPattern ReadRelief(TableReader& r, const std::string& height_key
 pipeline::ThroughAirSettings ReadThroughAir(TableReader& r, ReadContext& ctx) {
   pipeline::ThroughAirSettings t;
   const toml::table* fabric = r.Table("fabric");
-  if (!fabric) r.Fail("fabric", "missing table: the drying fabric's pattern (pocket_depth_um, ...)");
+  if (!fabric)
+    r.Fail("fabric", "missing table: the drying fabric's pattern (pocket_depth_um, ...)");
   TableReader fr(fabric, r.Path("fabric"), ctx);
   t.fabric = ReadRelief(fr, "pocket_depth_um");
   t.pressure = r.Number("pressure_kPa", 20, OpenClosed(0, 1e4), "kPa") * 1e3;
@@ -248,14 +257,16 @@ pipeline::CrepingSettings ReadCreping(TableReader& r, ReadContext& ctx) {
   c.yankee_speed = r.Number("yankee_speed_m_per_s", 30, OpenClosed(0, 200), "m/s");
   c.creping_angle = r.Number("creping_angle_deg", 85, Closed(30, 150), "deg") * kDeg;
   c.crepe_ratio = r.Number("crepe_ratio_percent", 15, Closed(0, 200), "%") * 1e-2;
-  c.takeaway_height = r.Number("takeaway_height_um", 0, Closed(0, 1e5), "um (0 = 3 x the caliper)") * 1e-6;
+  c.takeaway_height =
+      r.Number("takeaway_height_um", 0, Closed(0, 1e5), "um (0 = 3 x the caliper)") * 1e-6;
   c.takeaway_time = r.Number("takeaway_time_us", 2, OpenClosed(0, 1e6), "us") * 1e-6;
   c.tip_clearance = r.Number("tip_clearance_um", 0, Closed(0, 1000), "um") * 1e-6;
   c.blade_hard_stiffness = r.Number("blade_hard_stiffness_N_per_m", 3e4, Closed(0, 1e9), "N/m");
   c.fibre_hard_stiffness = r.Number("fibre_hard_stiffness_N_per_m", 1.5e4, Closed(0, 1e9), "N/m");
   c.relax_mass_scale = r.Number("relax_mass_scale", 1000, Closed(1, 1e8), "");
   c.relax_damping_time = r.Number("relax_damping_time_us", 10, OpenClosed(0, 1e6), "us") * 1e-6;
-  c.relax_bond_damping_ratio = r.Number("relax_bond_damping_ratio", 0.5, Closed(0, 1), "of critical");
+  c.relax_bond_damping_ratio =
+      r.Number("relax_bond_damping_ratio", 0.5, Closed(0, 1), "of critical");
   c.relax_kinetic_ratio = r.Number("relax_kinetic_ratio", 1e-3, Open(0, 1), "");
   c.relax_energy_tolerance = r.Number("relax_energy_tolerance", 0.01, Open(0, 1), "");
   c.relax_max_steps = r.Integer("relax_max_steps", 50'000, 0, 10'000'000'000LL);
@@ -332,14 +343,18 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
   TableReader cell(root.Table("cell"), "cell", ctx);
   spec.sheet.Lx = cell.Number("size_x_mm", 2.5, OpenClosed(0, 1000), "mm") * 1e-3;
   spec.sheet.Ly = cell.Number("size_y_mm", 2.5, OpenClosed(0, 1000), "mm") * 1e-3;
-  spec.sheet.basis_weight = cell.Number("basis_weight_gsm", 20, OpenClosed(0, 1000), "g/m^2") * 1e-3;
+  spec.sheet.basis_weight =
+      cell.Number("basis_weight_gsm", 20, OpenClosed(0, 1000), "g/m^2") * 1e-3;
   cell.Finish();
 
   TableReader fidelity(root.Table("fidelity"), "fidelity", ctx);
-  spec.sheet.particle_spacing = fidelity.Number("particle_spacing_diameters", 1.0, Closed(0.25, 10), "diameters");
+  spec.sheet.particle_spacing =
+      fidelity.Number("particle_spacing_diameters", 1.0, Closed(0.25, 10), "diameters");
   spec.sheet.inertia_scale = fidelity.Number("inertia_scale", 1.0, Closed(1, 1e6), "");
-  spec.sheet.time_step_safety = fidelity.Number("time_step_safety", 0.5, OpenClosed(0, 1), "of dt_crit");
-  spec.sheet.neighbour_skin = fidelity.Number("neighbour_skin_radii", 0.5, OpenClosed(0, 5), "particle radii");
+  spec.sheet.time_step_safety =
+      fidelity.Number("time_step_safety", 0.5, OpenClosed(0, 1), "of dt_crit");
+  spec.sheet.neighbour_skin =
+      fidelity.Number("neighbour_skin_radii", 0.5, OpenClosed(0, 5), "particle radii");
   fidelity.Finish();
 
   TableReader fibres(root.Table("fibres"), "fibres", ctx);
@@ -364,7 +379,8 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
   }
   if (const toml::table* creping = root.Table("creping")) {
     if (!spec.pressing && !spec.through_air)
-      root.Fail("creping", "the sheet is creped after consolidation: add [pressing] or [through_air]");
+      root.Fail("creping",
+                "the sheet is creped after consolidation: add [pressing] or [through_air]");
     TableReader cr(creping, "creping", ctx);
     spec.creping = ReadCreping(cr, ctx);
   }
@@ -376,9 +392,10 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
   // Non-physical combinations, named by their scene keys.
   const double length = spec.sheet.fibres.length.Mean();
   if (length >= std::min(spec.sheet.Lx, spec.sheet.Ly))
-    fibres.Fail("length_mm", fmt::format("the mean fibre length {:g} mm must be shorter than the "
-                                         "cell side {:g} mm (cell.size_x_mm, cell.size_y_mm)",
-                                         length * 1e3, std::min(spec.sheet.Lx, spec.sheet.Ly) * 1e3));
+    fibres.Fail("length_mm",
+                fmt::format("the mean fibre length {:g} mm must be shorter than the "
+                            "cell side {:g} mm (cell.size_x_mm, cell.size_y_mm)",
+                            length * 1e3, std::min(spec.sheet.Lx, spec.sheet.Ly) * 1e3));
   if (spec.pressing && spec.pressing->target == pipeline::PressTarget::kThickness &&
       spec.pressing->target_thickness <= spec.sheet.fibres.diameter.Highest())
     throw InputError(fmt::format("{}: pressing.target_thickness_um: {:g} um is not above the "
@@ -450,7 +467,8 @@ std::string ReadSceneText(const std::string& path) {
   if (std::filesystem::is_directory(path))
     throw InputError(fmt::format("{}: is a folder; accepted: a scene file (TOML)", path));
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open the scene file (missing or unreadable)", path));
+  if (!in)
+    throw InputError(fmt::format("{}: cannot open the scene file (missing or unreadable)", path));
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();

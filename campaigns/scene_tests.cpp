@@ -28,7 +28,8 @@ void ReadQuasiStatic(TableReader& r, pipeline::QuasiStaticSettings& q) {
   q.local_damping = r.Number("local_damping", q.local_damping, ClosedOpen(0, 1), "(0 = off)");
   q.kinetic_work_tolerance =
       r.Number("kinetic_work_tolerance", q.kinetic_work_tolerance, OpenClosed(0, 1), "");
-  q.time_step_safety = r.Number("time_step_safety", q.time_step_safety, OpenClosed(0, 1), "of dt_crit");
+  q.time_step_safety =
+      r.Number("time_step_safety", q.time_step_safety, OpenClosed(0, 1), "of dt_crit");
 }
 
 pipeline::TensileStage ReadTensile(TableReader& r) {
@@ -37,21 +38,25 @@ pipeline::TensileStage ReadTensile(TableReader& r) {
   if (direction == "MD") t.axes = {LoadAxis::kMD};
   if (direction == "CD") t.axes = {LoadAxis::kCD};
   pipeline::TensileSettings& s = t.settings;
-  s.grip_length = r.Number("grip_length_mm", 0.0, Closed(0, 1000), "mm (0 = 10% of the cell)") * 1e-3;
+  s.grip_length =
+      r.Number("grip_length_mm", 0.0, Closed(0, 1000), "mm (0 = 10% of the cell)") * 1e-3;
   s.strain_rate = r.Number("strain_rate_per_s", s.strain_rate, OpenClosed(0, 1e4), "1/s");
   s.max_strain = r.Number("max_strain", s.max_strain, OpenClosed(0, 2), "");
   s.failure_drop = r.Number("failure_drop", s.failure_drop, Open(0, 1), "of the peak stress");
   const double cycle = r.Number("cycle_strain", 0.0, ClosedOpen(0, 2), "(0 = no cycle)");
   if (cycle > 0.0) s.cycle_strains = {cycle};
-  s.modulus_window_lo = r.Number("modulus_window_lo", s.modulus_window_lo, ClosedOpen(0, 1), "of the peak");
-  s.modulus_window_hi = r.Number("modulus_window_hi", s.modulus_window_hi, OpenClosed(0, 1), "of the peak");
+  s.modulus_window_lo =
+      r.Number("modulus_window_lo", s.modulus_window_lo, ClosedOpen(0, 1), "of the peak");
+  s.modulus_window_hi =
+      r.Number("modulus_window_hi", s.modulus_window_hi, OpenClosed(0, 1), "of the peak");
   s.samples = static_cast<int>(r.Integer("samples", s.samples, 10, 100000));
   s.max_steps = r.Integer("max_steps", s.max_steps, 1, 10'000'000'000LL);
   ReadSwitches(r, s.switches);
   ReadQuasiStatic(r, s.quasi_static);
   r.Finish();
   if (cycle >= s.max_strain)
-    r.Fail("cycle_strain", fmt::format("{:g} must be below max_strain = {:g}", cycle, s.max_strain));
+    r.Fail("cycle_strain",
+           fmt::format("{:g} must be below max_strain = {:g}", cycle, s.max_strain));
   if (s.modulus_window_lo >= s.modulus_window_hi)
     r.Fail("modulus_window_lo", "must be below modulus_window_hi");
   return t;
@@ -59,20 +64,27 @@ pipeline::TensileStage ReadTensile(TableReader& r) {
 
 pipeline::CompressionSettings ReadCompression(TableReader& r, pipeline::CompressionSettings c) {
   c.max_strain = r.Number("max_strain", c.max_strain, OpenClosed(0, 0.95), "");
-  c.max_pressure = r.Number("max_pressure_kPa", c.max_pressure * 1e-3, Closed(0, 1e6), "kPa (0 = strain only)") * 1e3;
+  c.max_pressure =
+      r.Number("max_pressure_kPa", c.max_pressure * 1e-3, Closed(0, 1e6), "kPa (0 = strain only)") *
+      1e3;
   c.strain_rate = r.Number("strain_rate_per_s", c.strain_rate, OpenClosed(0, 1e5), "1/s");
   c.modulus_pressure_lo =
-      r.Number("modulus_pressure_lo_kPa", c.modulus_pressure_lo * 1e-3, Closed(0, 1e5), "kPa") * 1e3;
+      r.Number("modulus_pressure_lo_kPa", c.modulus_pressure_lo * 1e-3, Closed(0, 1e5), "kPa") *
+      1e3;
   c.modulus_pressure_hi =
-      r.Number("modulus_pressure_hi_kPa", c.modulus_pressure_hi * 1e-3, OpenClosed(0, 1e5), "kPa") * 1e3;
+      r.Number("modulus_pressure_hi_kPa", c.modulus_pressure_hi * 1e-3, OpenClosed(0, 1e5), "kPa") *
+      1e3;
   c.min_speed_fraction = r.Number("min_speed_fraction", c.min_speed_fraction, OpenClosed(0, 1),
                                   "of the platen speed (1 = constant speed)");
+  c.toe_kinetic_share = r.Number("toe_kinetic_share", c.toe_kinetic_share, OpenClosed(0, 1),
+                                 "of the kinetic guard's tolerance");
   c.approach_speed_fraction = r.Number("approach_speed_fraction", c.approach_speed_fraction,
                                        Closed(0, 1), "of the platen speed (0 = no approach)");
-  c.approach_pressure_fraction = r.Number("approach_pressure_fraction", c.approach_pressure_fraction,
-                                          Closed(0, 1), "of modulus_pressure_lo_kPa");
-  c.residual_pressure_fraction =
-      r.Number("residual_pressure_fraction", c.residual_pressure_fraction, Open(0, 1), "of the peak");
+  c.approach_pressure_fraction =
+      r.Number("approach_pressure_fraction", c.approach_pressure_fraction, Closed(0, 1),
+               "of modulus_pressure_lo_kPa");
+  c.residual_pressure_fraction = r.Number("residual_pressure_fraction",
+                                          c.residual_pressure_fraction, Open(0, 1), "of the peak");
   c.samples = static_cast<int>(r.Integer("samples", c.samples, 10, 100000));
   c.attribution = r.Bool("attribution", c.attribution);
   c.max_steps = r.Integer("max_steps", c.max_steps, 1, 10'000'000'000LL);
@@ -92,7 +104,8 @@ pipeline::SoftnessSettings ReadSoftness(TableReader& r, ReadContext& ctx) {
                   ? pipeline::BendingMethod::kPlate
                   : pipeline::BendingMethod::kPureBending;
   pipeline::BendingSettings& b = s.bending_test;
-  b.axis = r.Choice("bending_direction", "MD", {"MD", "CD"}) == "CD" ? LoadAxis::kCD : LoadAxis::kMD;
+  b.axis =
+      r.Choice("bending_direction", "MD", {"MD", "CD"}) == "CD" ? LoadAxis::kCD : LoadAxis::kMD;
   b.max_curvature = r.Number("max_curvature_per_m", b.max_curvature, OpenClosed(0, 1e5), "1/m");
   b.fit_from = r.Number("fit_from", b.fit_from, ClosedOpen(0, 1), "of max_curvature_per_m");
   b.levels = static_cast<int>(r.Integer("curvature_levels", b.levels, 2, 100));
@@ -102,9 +115,11 @@ pipeline::SoftnessSettings ReadSoftness(TableReader& r, ReadContext& ctx) {
   i.w_bulk = r.Number("weight_bulk", i.w_bulk, Closed(0, 5), "");
   i.w_roughness = r.Number("weight_roughness", i.w_roughness, Closed(0, 5), "");
   i.w_bending = r.Number("weight_bending", i.w_bending, Closed(0, 5), "");
-  i.bulk_ref_um_per_kPa = r.Number("bulk_ref_um_per_kPa", i.bulk_ref_um_per_kPa, OpenClosed(0, 1e6), "um/kPa");
+  i.bulk_ref_um_per_kPa =
+      r.Number("bulk_ref_um_per_kPa", i.bulk_ref_um_per_kPa, OpenClosed(0, 1e6), "um/kPa");
   i.roughness_ref_um = r.Number("roughness_ref_um", i.roughness_ref_um, OpenClosed(0, 1e6), "um");
-  i.bending_ref_mN_mm = r.Number("bending_ref_mN_mm", i.bending_ref_mN_mm, OpenClosed(0, 1e6), "mN mm");
+  i.bending_ref_mN_mm =
+      r.Number("bending_ref_mN_mm", i.bending_ref_mN_mm, OpenClosed(0, 1e6), "mN mm");
   // [softness.compression]: the light compression for bulk softness when the scene has no
   // [compression] table; same keys as [compression].
   if (const toml::table* c = r.Table("compression")) {

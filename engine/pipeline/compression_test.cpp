@@ -69,12 +69,12 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
     return AffineField{2, z_lo, w.walls[1].z - z_lo, w.walls[1].vz};
   };
   // Kinetic energy of the affine field at the full speed (masses scaled): the platen comes
-  // down no faster than keeps it within a quarter of the guard's tolerance of the work done
-  // so far (the motion beyond the affine field is of the same order).
+  // down no faster than keeps it within toe_kinetic_share of the guard's tolerance of the
+  // work done so far (the motion beyond the affine field is of the same order).
   double kinetic_full = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i)
     kinetic_full += 0.5 * p.mass[i] * std::pow(speed * (p.x[i].z() - z_lo) / run.h0, 2);
-  const double allowed = 0.25 * s.quasi_static.kinetic_work_tolerance;
+  const double allowed = s.toe_kinetic_share * s.quasi_static.kinetic_work_tolerance;
   auto loading_speed = [&](double work) {
     if (!(kinetic_full > 0.0)) return speed;  // every particle on the floor: nothing to move
     const double rule = speed * std::sqrt(allowed * std::max(work, 0.0) / kinetic_full);
@@ -237,6 +237,8 @@ std::string CompressionSettings::Validate() const {
   if (!(min_speed_fraction > 0.0 && min_speed_fraction <= 1.0))
     return fmt::format("min_speed_fraction = {}: must lie in (0, 1] (1 = constant speed)",
                        min_speed_fraction);
+  if (!(toe_kinetic_share > 0.0 && toe_kinetic_share <= 1.0))
+    return fmt::format("toe_kinetic_share = {}: must lie in (0, 1]", toe_kinetic_share);
   if (!(approach_speed_fraction >= 0.0 && approach_speed_fraction <= 1.0))
     return fmt::format("approach_speed_fraction = {}: must lie in [0, 1] (0 = no approach)",
                        approach_speed_fraction);

@@ -50,11 +50,12 @@ struct CompressionSettings {
   double max_pressure = 0.0;      // [Pa]; > 0: stop loading at this pressure (or max_strain)
   double strain_rate = 1.0;       // platen speed / h0 [1/s]
   // Slow toe: while loading, the platen speed is the full speed times
-  // sqrt(kinetic_work_tolerance / 4 x platen work so far / kinetic energy of the affine field
-  // at the full speed), within [min_speed_fraction, 1] (1 = constant speed). With the masses
-  // scaled, a sheet moving at the full speed holds far more kinetic energy than the platen
-  // has put in during the toe; the kinetic energy goes as the speed squared.
+  // sqrt(toe_kinetic_share x kinetic_work_tolerance x platen work so far / kinetic energy of
+  // the affine field at the full speed), within [min_speed_fraction, 1] (1 = constant speed).
+  // With the masses scaled, a sheet moving at the full speed holds far more kinetic energy
+  // than the platen has put in during the toe; the kinetic energy goes as the speed squared.
   double min_speed_fraction = 0.01;
+  double toe_kinetic_share = 0.25;  // (0, 1]
   // Approach (off by default): until the pressure first reaches approach_pressure_fraction x
   // modulus_pressure_lo, the platen comes down at approach_speed_fraction of the full speed
   // (never slower than the slow toe would). No figure is read there: the guard starts at the

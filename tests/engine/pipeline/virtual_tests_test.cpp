@@ -108,6 +108,9 @@ TEST(Settings, MessagesNameTheKeyAndTheRange) {
   c = CompressionSettings{};
   c.min_speed_fraction = 0.0;
   EXPECT_NE(c.Validate().find("min_speed_fraction"), std::string::npos);
+  c = CompressionSettings{};
+  c.toe_kinetic_share = 1.5;
+  EXPECT_NE(c.Validate().find("toe_kinetic_share"), std::string::npos);
   BendingSettings b;
   b.levels = 1;
   EXPECT_NE(b.Validate().find("levels"), std::string::npos);
