@@ -146,11 +146,12 @@ inline Mat3 InverseLeftJacobian(const Vec3& phi) {
   return Mat3::Identity() - 0.5 * K + InverseLeftJacobianCoefficientAt(phi.squaredNorm()) * K * K;
 }
 
-// The same Jacobians applied transposed to a vector, without forming a matrix (the bond's
-// hot path): K^T = -K and (K K)^T = K K, so
+// The same Jacobians applied transposed to a vector, without forming a matrix: K^T = -K and
+// (K K)^T = K K, so
 //   J_l^T v = v - c1 phi x v + c2 phi x (phi x v),  J_l^-T v = v + phi x v / 2 + c phi x (phi x v).
 // The coefficients come from the functions above, so that a caller applying one Jacobian
-// twice computes them once.
+// twice computes them once. The bond applies J_l^-T, and the product of both through the
+// operator below; J_l^T alone is what that operator is checked against.
 inline Vec3 LeftJacobianTransposeTimes(const Vec3& phi, const LeftJacobianCoefficients& c,
                                        const Vec3& v) {
   const Vec3 pv = phi.cross(v);
