@@ -87,7 +87,8 @@ std::string FindPython() {
 }
 
 int RunReport(const ReportOptions& o) {
-  if (!fs::is_regular_file(o.db_path)) {
+  std::error_code ec;
+  if (!fs::is_regular_file(o.db_path, ec)) {
     throw InputError(fmt::format("--db {}: no such file", o.db_path));
   }
   const fs::path script = FindScript();

@@ -24,14 +24,17 @@ using optimizer::Target;
 
 std::string ReadFile(const std::string& path, const std::string& what) {
   // An ifstream opens a folder without complaint and reads nothing from it.
-  if (fs::is_directory(path)) {
+  std::error_code ec;  // a name the system refuses (too long, say) is not a folder
+  if (fs::is_directory(path, ec)) {
     throw InputError(fmt::format("{}: cannot read {}: it is a folder; accepted: a TOML file", path,
                                  what));
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw InputError(fmt::format("{}: cannot read {} ({})", path, what,
-                                 fs::exists(path) ? "permission denied" : "no such file"));
+                                 fs::exists(path, ec) ? "permission denied"
+                                 : ec                 ? ec.message()
+                                                      : "no such file"));
   }
   std::ostringstream out;
   out << in.rdbuf();
@@ -350,8 +353,13 @@ std::string ResolveScene(CampaignTable& top, const std::string& base_dir, ParseM
   fs::path p(scene);
   if (p.is_relative()) p = fs::path(base_dir) / p;
   p = p.lexically_normal();
-  if (mode == ParseMode::kFull && !fs::is_regular_file(p)) {
-    top.Fail("base_scene", fmt::format("scene file '{}' does not exist", p.string()));
+  std::error_code ec;
+  if (mode == ParseMode::kFull && !fs::is_regular_file(p, ec)) {
+    // A name the system refuses outright (too long, say) gets the system's words.
+    const bool refused = ec && ec != std::errc::no_such_file_or_directory;
+    top.Fail("base_scene",
+             fmt::format("scene file '{}' {}", p.string(),
+                         refused ? "cannot be read: " + ec.message() : "does not exist"));
   }
   return p.string();
 }

@@ -464,9 +464,12 @@ PipelineSpec ParseScene(std::string_view text, const std::string& name,
 
 std::string ReadSceneText(const std::string& path) {
   // An ifstream opens a folder without complaint and reads nothing from it.
-  if (std::filesystem::is_directory(path))
+  std::error_code ec;  // a name the system refuses (too long, say) is not a folder
+  if (std::filesystem::is_directory(path, ec))
     throw InputError(fmt::format("{}: is a folder; accepted: a scene file (TOML)", path));
   std::ifstream in(path, std::ios::binary);
+  if (!in && ec && ec != std::errc::no_such_file_or_directory)  // too long a name, say
+    throw InputError(fmt::format("{}: cannot open the scene file ({})", path, ec.message()));
   if (!in)
     throw InputError(fmt::format("{}: cannot open the scene file (missing or unreadable)", path));
   std::ostringstream text;

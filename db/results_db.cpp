@@ -111,6 +111,10 @@ std::string path_problem(const std::string& path, OpenMode mode) {
   const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
   const bool writing = mode == OpenMode::kReadWrite;
   if (fs::is_directory(file, ec)) return "it is a folder; accepted: the path of a database file";
+  // A name the system refuses outright (too long, a loop of links): say so in its words.
+  if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory) {
+    return ec.message() + "; accepted: the path of a database file";
+  }
   const std::string in_folder = "'" + folder.string() + "'";
   if (!fs::exists(folder, ec)) {
     return "folder " + in_folder + " does not exist; accepted: a file in an existing folder";
@@ -170,8 +174,9 @@ ResultsDb::ResultsDb(const std::string& path, OpenMode mode) : path_(path), mode
   if (const std::string problem = path_problem(path_, mode); !problem.empty()) {
     throw DbError(detail::message(path_, "cannot open", problem));
   }
+  std::error_code ec;
   if (mode == OpenMode::kReadWrite && is_plain_file_path(path_) &&
-      !std::filesystem::exists(path_)) {
+      !std::filesystem::exists(path_, ec)) {
     create_whole_file(path_);
   }
   const int flags = mode == OpenMode::kReadOnly ? SQLite::OPEN_READONLY

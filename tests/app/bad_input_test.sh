@@ -120,6 +120,9 @@ sed '/^\[pressing/,$d' scene.toml > s20.toml
 printf '[creping]\nyankee_speed_m_per_s = 30\n' >> s20.toml
 bad s20 "s20.toml: creping: the sheet is creped after consolidation: add [pressing] or [through_air]" \
   -- run s20.toml
+# A file name longer than the system's limit (255 bytes): the system's reason, not a crash.
+long=$(printf 'n%.0s' {1..300})
+bad s21 "$long.toml: cannot open the scene file (File name too long)" -- run "$long.toml"
 
 # --- the run command line -------------------------------------------------------------------
 bad r01 "scene.toml: unknown key 'fibres.lenght_mm' (override); did you mean 'fibres.length_mm'?" \
@@ -225,6 +228,9 @@ bad k24 "k24.toml: campaign 'quick' in database good.db was started from a diffe
 variant k25.toml campaign.toml 's/^points = 4/points = 2147483647/'
 bad k25 "k25.toml:30: doe.points: must be an integer <= 1000000; got 2147483647" \
   -- campaign k25.toml --db new.db
+variant k26.toml scene_campaign.toml "s/^base_scene = .*/base_scene = \"$long.toml\"/"
+bad k26 "k26.toml:5: base_scene: scene file '$PWD/$long.toml' cannot be read: File name too long" \
+  -- campaign k26.toml --db new.db
 
 # --- the results database -------------------------------------------------------------------
 bad d01 "results database 'nofolder/new.db': cannot open: folder 'nofolder' does not exist; accepted: a file in an existing folder" \
@@ -302,6 +308,8 @@ bad d16 "--out nofolder/quick.csv: cannot write the file; accepted: a file in an
   -- "$fibrenet" db export --db good.db --campaign quick --out nofolder/quick.csv
 bad d17 "-n: 'abc' is not accepted; accepted: an integer (negative: all)" \
   -- "$fibrenet" db best --db good.db --campaign quick -n abc
+bad d20 "results database '$long.db': cannot open: File name too long; accepted: the path of a database file" \
+  -- campaign campaign.toml --db "$long.db"
 
 [ "$(count good.db)" = "$candidates" ] || fail "good.db changed: $(count good.db) candidates"
 echo "bad input test passed"

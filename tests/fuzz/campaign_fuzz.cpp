@@ -51,7 +51,9 @@ void ReadAndCheck(std::string_view text) {
       fibrenet::campaigns::ParseCampaign(text, kSource, kScenesDir, ParseMode::kStored);
   CheckAccepted(spec);
   if (spec.base_scene.rfind(fibrenet::campaigns::kAnalyticPrefix, 0) != 0) {
-    if (spec.base_scene.rfind(kScenesDir + "/", 0) == 0 && fs::is_regular_file(spec.base_scene))
+    std::error_code ec;  // a name too long for the system names no file
+    const bool in_scenes = spec.base_scene.rfind(kScenesDir + "/", 0) == 0;
+    if (in_scenes && fs::is_regular_file(spec.base_scene, ec))
       spec = fibrenet::campaigns::ParseCampaign(text, kSource, kScenesDir, ParseMode::kFull);
     else
       spec.base_scene = kScenesDir + "/tiny.toml";
