@@ -12,6 +12,7 @@
 #include "engine/core/quaternion.h"
 #include "engine/core/simulation.h"
 #include "engine/interactions/beam_bond.h"
+#include "engine/interactions/beam_bond_lanes.h"
 #include "engine/interactions/contact.h"
 
 namespace fibrenet {
@@ -50,16 +51,21 @@ std::vector<BondCase> BondBatch() {
 
 // One six-mode bond evaluation with the fibre-bed parameters: arg 0 elastic, no failure;
 // arg 1 as a fibre-fibre bond in a virtual test (Hill failure, dashpots in every mode).
-void BM_EvaluateBond(benchmark::State& state) {
-  std::vector<BondCase> batch = BondBatch();
+BeamBondParams BenchBondParams(bool hill_and_damping) {
   BeamBondParams p = BeamBondParams::FromBeam(10e9, 3e9, kR, kL);
-  if (state.range(0) != 0) {
+  if (hill_and_damping) {
     p.failure = BondFailure::kHill;
     p.F_r0 = p.F_s0 = 10.0;  // [N] strong enough that no bond of the batch breaks
     p.HillDefaults();
     p.damping_n = p.damping_s = 1e-6;
     p.damping_rot = 1e-15;
   }
+  return p;
+}
+
+void BM_EvaluateBond(benchmark::State& state) {
+  std::vector<BondCase> batch = BondBatch();
+  const BeamBondParams p = BenchBondParams(state.range(0) != 0);
   state.SetLabel(state.range(0) != 0 ? "hill+damping" : "elastic");
   const double dt = 1e-9;
   for (auto _ : state) {
@@ -71,6 +77,32 @@ void BM_EvaluateBond(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kBatch);
 }
 BENCHMARK(BM_EvaluateBond)->Arg(0)->Arg(1);
+
+// The same bonds four at a time through the lanes (beam_bond_lanes.h), gathered beforehand:
+// items/s is bonds per second, to compare with BM_EvaluateBond.
+void BM_EvaluateBondLanes(benchmark::State& state) {
+  const std::vector<BondCase> batch = BondBatch();
+  const BondLanesType p = LanesTypeOf(BenchBondParams(state.range(0) != 0));
+  std::vector<BondLanesInput> groups(kBatch / kBondLanes);
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    groups[k].damped = false;
+    for (int l = 0; l < kBondLanes; ++l) {
+      const BondCase& c = batch[k * kBondLanes + l];
+      SetLane(groups[k], l, c.g, c.s, p);
+    }
+  }
+  state.SetLabel(state.range(0) != 0 ? "hill+damping" : "elastic");
+  const double dt = 1e-9;
+  BondLanesResult r;
+  for (auto _ : state) {
+    for (const BondLanesInput& in : groups) {
+      EvaluateBondLanes(in, dt, r);
+      benchmark::DoNotOptimize(r);
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+BENCHMARK(BM_EvaluateBondLanes)->Arg(0)->Arg(1);
 
 // One van Wyk contact with damping and, for arg 1, Cundall-Strack friction with history.
 void BM_EvaluateContact(benchmark::State& state) {

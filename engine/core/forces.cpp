@@ -2,24 +2,87 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "engine/interactions/beam_bond_lanes.h"
 
 namespace fibrenet {
+
+namespace {
+
+// Gathers the four bonds first..first+3 into the lanes' input.
+void GatherBondLanes(const World& w, const std::vector<BondLanesType>& types, std::int64_t first,
+                     BondLanesInput& in) {
+  const Particles& p = w.particles;
+  const Bonds& bonds = w.bonds;
+  in.damped = false;
+  for (int l = 0; l < kBondLanes; ++l) {
+    const std::int64_t b = first + l;
+    const std::int32_t i = bonds.i[b], j = bonds.j[b];
+    const BondGeometry g{
+        w.cell.Delta(p.x[i], p.x[j]), p.q[i], p.q[j], p.v[j] - p.v[i], p.omega[i], p.omega[j]};
+    SetLane(in, l, g, bonds.state[b], types[bonds.type[b]]);
+  }
+}
+
+}  // namespace
 
 void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
   Particles& p = w.particles;
   Bonds& bonds = w.bonds;
   const double dt = w.settings.dt;
+  // Types the lanes take (beam_bond_lanes.h); a bond of another type goes alone.
+  std::vector<std::uint8_t> lanes_take(bonds.types.size());
+  std::vector<BondLanesType> lanes_types(bonds.types.size());
+  for (std::size_t t = 0; t < bonds.types.size(); ++t) {
+    lanes_take[t] = LanesTakeType(bonds.types[t]);
+    lanes_types[t] = LanesTypeOf(bonds.types[t]);
+  }
   double inelastic = 0.0, released = 0.0;
   int broke = 0;
 #pragma omp parallel reduction(+ : inelastic, released) reduction(| : broke)
   for (int range = ThreadId(); range < buffers.Ranges(); range += TeamSize()) {
     ForceBuffers::Writer out = buffers.WriterFor(range);
-    const auto [first, last] = buffers.BondRange(range);
+    // Plain names, not a structured binding: the lambda below captures them.
+    const std::int64_t first = buffers.BondRange(range).first;
+    const std::int64_t last = buffers.BondRange(range).second;
+    // Four bonds side by side where they can go so; each bond's forces are those of
+    // EvaluateBond bit for bit, so the grouping changes no result.
+    const auto lanes_fit = [&](std::int64_t b) {
+      if (last - b < kBondLanes) return false;
+      for (int l = 0; l < kBondLanes; ++l)
+        if (bonds.broken[b + l] || !lanes_take[bonds.type[b + l]]) return false;
+      return true;
+    };
+    // The forces go out bond by bond in order either way, so the sums keep their order.
+    BondLanesInput input;
+    BondLanesResult group;
+    std::uint32_t from_lanes = 0;  // bit l: bond (group start + l) has its result in group
     for (std::int64_t b = first; b < last; ++b) {
+      const int lane = static_cast<int>((b - first) % kBondLanes);
+      if (lane == 0) {
+        from_lanes = 0;
+        if (lanes_fit(b)) {
+          GatherBondLanes(w, lanes_types, b, input);
+          EvaluateBondLanes(input, dt, group);
+          for (int l = 0; l < kBondLanes; ++l)
+            if (LaneHolds(group, l)) from_lanes |= 1u << l;
+        }
+      }
+      if (from_lanes >> lane & 1u) {
+        const std::int32_t i = bonds.i[b], j = bonds.j[b];
+        const Vec3 f(group.force_i.x[lane], group.force_i.y[lane], group.force_i.z[lane]);
+        out.Add(i, f, Vec3(group.torque_i.x[lane], group.torque_i.y[lane], group.torque_i.z[lane]));
+        out.AddReaction(
+            j, f, Vec3(group.torque_j.x[lane], group.torque_j.y[lane], group.torque_j.z[lane]));
+        inelastic += group.dissipated[lane];
+        continue;
+      }
       if (bonds.broken[b]) continue;
       const std::int32_t i = bonds.i[b], j = bonds.j[b];
-      const BondGeometry g{w.cell.Delta(p.x[i], p.x[j]), p.q[i], p.q[j], p.v[j] - p.v[i],
-                           p.omega[i], p.omega[j]};
+      const BondGeometry g{
+          w.cell.Delta(p.x[i], p.x[j]), p.q[i], p.q[j], p.v[j] - p.v[i], p.omega[i], p.omega[j]};
       const BondResult r = EvaluateBond(g, bonds.types[bonds.type[b]], bonds.state[b], dt);
       inelastic += r.dissipated;
       if (r.broken) {
@@ -83,9 +146,9 @@ void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses
         }
         const double dist = std::sqrt(dist2);
         const double m_sum = p.mass[i] + p.mass[j];
-        const ContactGeometry g{d,          dist,       r_i,       p.radius[j],
-                                p.mass[i] * p.mass[j] / m_sum,      p.v[j] - p.v[i],
-                                p.omega[i], p.omega[j]};
+        const ContactGeometry g{
+            d,          dist,      r_i, p.radius[j], p.mass[i] * p.mass[j] / m_sum, p.v[j] - p.v[i],
+            p.omega[i], p.omega[j]};
         const ContactResult r = EvaluateContact(g, w.contact, nl.History(k), dt, friction);
         out.AddReaction(static_cast<std::int32_t>(i), r.force_j, r.torque_i);
         out.Add(j, r.force_j, r.torque_j);
@@ -117,8 +180,9 @@ SurfaceResult SurfaceContact(const World& w, const ContactParams& law, std::int6
                              Vec3& history, bool friction, double hard_stiffness, double hard_gap) {
   const Particles& p = w.particles;
   const double dist = std::max(2.0 * gap, 1e-3 * p.radius[i]);
-  const ContactGeometry g{-dist * normal, dist, p.radius[i], p.radius[i], p.mass[i],
-                          surface_velocity - p.v[i], p.omega[i], Vec3::Zero()};
+  const ContactGeometry g{-dist * normal, dist,        p.radius[i],
+                          p.radius[i],    p.mass[i],   surface_velocity - p.v[i],
+                          p.omega[i],     Vec3::Zero()};
   const ContactResult r = EvaluateContact(g, law, history, w.settings.dt, friction);
   SurfaceResult out{r.force_j, r.torque_i, r.damping_power, r.slip_loss};
   const double core = hard_gap * p.radius[i] - gap;
@@ -151,8 +215,8 @@ Vec3 AccumulateSurface(World& w, const ContactParams& law, TouchOf touch,
       ClearHistory(history[i]);
       continue;
     }
-    const SurfaceResult r = SurfaceContact(w, law, i, t.normal, t.gap, surface_velocity,
-                                           history[i], friction, hard_stiffness, hard_gap);
+    const SurfaceResult r = SurfaceContact(w, law, i, t.normal, t.gap, surface_velocity, history[i],
+                                           friction, hard_stiffness, hard_gap);
     p.force[i] -= r.on_surface;
     p.torque[i] += r.torque;
     fx += r.on_surface.x();

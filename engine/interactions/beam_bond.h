@@ -107,6 +107,21 @@ struct BondResult {
   double Energy() const { return energy_n + energy_s + energy_b + energy_t; }
 };
 
+// The failure index of the mode loads (>= 1 means broken), by the bond's failure rule.
+inline double FailureIndex(const BeamBondParams& p, double f_r, double f_s, double tau_b,
+                           double tau_t) {
+  switch (p.failure) {
+    case BondFailure::kNone:
+      break;
+    case BondFailure::kModeThresholds:
+      return std::max({f_r / p.max_tension, f_s / p.max_shear, tau_b / p.max_bending,
+                       tau_t / p.max_twist});
+    case BondFailure::kHill:
+      return std::max(f_r, 0.0) / p.F_r0 + f_s / p.F_s0 + tau_b / p.G_b0 + tau_t / p.G_t0;
+  }
+  return 0.0;
+}
+
 // Creates the reference state of a bond in the current configuration (rest length = the
 // current distance unless rest_length > 0).
 BondState MakeBondState(const Vec3& d, const Quat& q_i, const Quat& q_j, double rest_length = 0.0);
@@ -166,18 +181,7 @@ inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, B
   r.energy_b = 0.5 * (m_y * m_y + m_z * m_z) / (p.k_b > 0.0 ? p.k_b : 1.0);
   r.energy_t = 0.5 * p.k_t * theta.x() * theta.x();
 
-  switch (p.failure) {
-    case BondFailure::kNone:
-      break;
-    case BondFailure::kModeThresholds:
-      r.failure_index = std::max({r.f_r / p.max_tension, r.f_s / p.max_shear,
-                                  r.tau_b / p.max_bending, r.tau_t / p.max_twist});
-      break;
-    case BondFailure::kHill:
-      r.failure_index = std::max(r.f_r, 0.0) / p.F_r0 + r.f_s / p.F_s0 + r.tau_b / p.G_b0 +
-                        r.tau_t / p.G_t0;
-      break;
-  }
+  r.failure_index = FailureIndex(p, r.f_r, r.f_s, r.tau_b, r.tau_t);
   if (r.failure_index >= 1.0) {
     r.broken = true;
     return r;  // no force from the step it breaks on: released energy is r.Energy()

@@ -1,0 +1,286 @@
+// Four bonds evaluated side by side, one per lane of a vector register: the law of
+// EvaluateBond (beam_bond.h) with the same operations in the same order, so that each lane's
+// forces and torques equal those of EvaluateBond on that bond bit for bit.
+//
+// Why: one bond evaluation is a chain of a few hundred dependent multiplications and adds
+// (quaternion products, rotation vector, frames, Jacobians), so a single bond keeps the
+// floating-point units waiting on latency. Four independent chains in the lanes fill them.
+//
+// The lanes take the common case only, and say per lane when the bond needs EvaluateBond:
+// - its type must be elastic without history (LanesTakeType): no Maxwell dashpot, no plastic
+//   yield, so the bond's state does not change;
+// - its relative rotation must lie in the short-series range (kShortSeriesAngle2);
+// - it must not reach failure (the caller books the break through EvaluateBond).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+#include "engine/interactions/beam_bond.h"
+
+namespace fibrenet {
+
+inline constexpr int kBondLanes = 4;
+
+// GCC and Clang vector extension: arithmetic acts lane by lane (on SSE2 as two halves).
+typedef double Lanes __attribute__((vector_size(kBondLanes * sizeof(double))));
+
+struct Vec3Lanes {
+  Lanes x, y, z;
+};
+struct QuatLanes {
+  Lanes w, x, y, z;
+};
+// Row-major: m[row][col].
+struct Mat3Lanes {
+  Lanes m[3][3];
+};
+
+// A bond type as the lanes read it: its parameters, and the reciprocals of its failure
+// thresholds, with which the lanes estimate the failure index without a division.
+struct BondLanesType {
+  double k_n = 0.0, k_s = 0.0, k_b = 0.0, k_t = 0.0;
+  double damping_n = 0.0, damping_s = 0.0, damping_rot = 0.0;
+  double inverse_threshold[4] = {0.0, 0.0, 0.0, 0.0};  // f_r, f_s, tau_b, tau_t; 0: never
+  double hill = 0.0;  // 1: the ratios add up (paper Eq. 3); 0: the largest counts
+};
+
+inline BondLanesType LanesTypeOf(const BeamBondParams& p) {
+  BondLanesType t{p.k_n, p.k_s, p.k_b, p.k_t, p.damping_n, p.damping_s, p.damping_rot};
+  if (p.failure == BondFailure::kHill) {
+    const double thresholds[4] = {p.F_r0, p.F_s0, p.G_b0, p.G_t0};
+    for (int m = 0; m < 4; ++m) t.inverse_threshold[m] = 1.0 / thresholds[m];
+    t.hill = 1.0;
+  } else if (p.failure == BondFailure::kModeThresholds) {
+    const double thresholds[4] = {p.max_tension, p.max_shear, p.max_bending, p.max_twist};
+    for (int m = 0; m < 4; ++m) t.inverse_threshold[m] = 1.0 / thresholds[m];
+  }
+  return t;
+}
+
+// The input of four bonds, gathered by the caller (one lane per bond).
+struct BondLanesInput {
+  Vec3Lanes d;  // x_j - x_i
+  QuatLanes q_i, q_j, b_i, b_j;
+  Vec3Lanes v_rel, omega_i, omega_j;
+  Lanes L0, dashpot, plastic_y, plastic_z;
+  Lanes k_n, k_s, k_b, k_t;
+  Lanes damping_n, damping_s, damping_rot;
+  Lanes inverse_threshold[4], hill;
+  bool damped = false;  // any lane with damping: else the damping terms are skipped
+};
+
+struct BondLanesResult {
+  Vec3Lanes force_i, torque_i, torque_j;
+  Lanes dissipated;
+  Lanes f_r, f_s, tau_b, tau_t;  // mode loads
+  // The failure index from products with the reciprocal thresholds: within 1e-15 relative
+  // of FailureIndex's quotients (its terms are never negative where they add up).
+  Lanes failure_estimate;
+  Lanes theta2;           // squared relative rotation angle
+  Lanes in_short_series;  // 1 where the short series hold, 0 elsewhere
+};
+
+// Whether lane l's result stands for its bond: in the short series, and so far from failure
+// that FailureIndex would certainly say it holds. Otherwise EvaluateBond takes the bond.
+inline bool LaneHolds(const BondLanesResult& r, int l) {
+  return r.in_short_series[l] != 0.0 && r.failure_estimate[l] < 1.0 - 1e-12;
+}
+
+// Puts one bond into lane l of `in`. `damped` is or-ed in: clear it before the first lane.
+inline void SetLane(BondLanesInput& in, int l, const BondGeometry& g, const BondState& s,
+                    const BondLanesType& p) {
+  in.d.x[l] = g.d.x(), in.d.y[l] = g.d.y(), in.d.z[l] = g.d.z();
+  for (auto [lanes, q] :
+       {std::pair{&in.q_i, &g.q_i}, {&in.q_j, &g.q_j}, {&in.b_i, &s.b_i}, {&in.b_j, &s.b_j}}) {
+    lanes->w[l] = q->w(), lanes->x[l] = q->x(), lanes->y[l] = q->y(), lanes->z[l] = q->z();
+  }
+  for (auto [lanes, v] :
+       {std::pair{&in.v_rel, &g.v_rel}, {&in.omega_i, &g.omega_i}, {&in.omega_j, &g.omega_j}}) {
+    lanes->x[l] = v->x(), lanes->y[l] = v->y(), lanes->z[l] = v->z();
+  }
+  in.L0[l] = s.L0, in.dashpot[l] = s.dashpot;
+  in.plastic_y[l] = s.plastic_y, in.plastic_z[l] = s.plastic_z;
+  in.k_n[l] = p.k_n, in.k_s[l] = p.k_s, in.k_b[l] = p.k_b, in.k_t[l] = p.k_t;
+  in.damping_n[l] = p.damping_n, in.damping_s[l] = p.damping_s;
+  in.damping_rot[l] = p.damping_rot;
+  for (int m = 0; m < 4; ++m) in.inverse_threshold[m][l] = p.inverse_threshold[m];
+  in.hill[l] = p.hill;
+  in.damped = in.damped || p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0;
+}
+
+// A type the lanes evaluate: its state never changes.
+inline bool LanesTakeType(const BeamBondParams& p) {
+  return p.maxwell_tau == 0.0 && !(p.yield_moment < std::numeric_limits<double>::infinity());
+}
+
+namespace lanes {
+
+inline Lanes Splat(double v) { return Lanes{v, v, v, v}; }
+
+inline Vec3Lanes Add(const Vec3Lanes& a, const Vec3Lanes& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline Vec3Lanes Sub(const Vec3Lanes& a, const Vec3Lanes& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline Vec3Lanes Scale(Lanes s, const Vec3Lanes& v) { return {s * v.x, s * v.y, s * v.z}; }
+inline Vec3Lanes Negate(const Vec3Lanes& v) { return {-v.x, -v.y, -v.z}; }
+// The orders of Eigen's 3-vector reductions: (x + y) + z.
+inline Lanes Dot(const Vec3Lanes& a, const Vec3Lanes& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline Vec3Lanes Cross(const Vec3Lanes& a, const Vec3Lanes& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+// Eigen's 3x3 matrix times vector sums rows 0 and 1 two at a time in a vector register,
+// (m0 v0 + m1 v1) + m2 v2, and the last row alone as m0 v0 + (m1 v1 + m2 v2).
+inline Vec3Lanes Times(const Mat3Lanes& M, const Vec3Lanes& v) {
+  return {M.m[0][0] * v.x + M.m[0][1] * v.y + M.m[0][2] * v.z,
+          M.m[1][0] * v.x + M.m[1][1] * v.y + M.m[1][2] * v.z,
+          M.m[2][0] * v.x + (M.m[2][1] * v.y + M.m[2][2] * v.z)};
+}
+// Its transpose times vector: (m0 v0 + m1 v1) + m2 v2 in every row.
+inline Vec3Lanes TransposeTimes(const Mat3Lanes& M, const Vec3Lanes& v) {
+  return {M.m[0][0] * v.x + M.m[1][0] * v.y + M.m[2][0] * v.z,
+          M.m[0][1] * v.x + M.m[1][1] * v.y + M.m[2][1] * v.z,
+          M.m[0][2] * v.x + M.m[1][2] * v.y + M.m[2][2] * v.z};
+}
+
+// Eigen's quaternion product as its SSE2 code computes it (Geometry_SIMD.h), term for term.
+inline QuatLanes Product(const QuatLanes& a, const QuatLanes& b) {
+  QuatLanes r;
+  r.x = (a.w * b.x + a.y * b.z) - (a.z * b.y - a.x * b.w);
+  r.y = (a.w * b.y + a.y * b.w) + (a.z * b.x - a.x * b.z);
+  r.z = (a.w * b.z - a.y * b.x) + (a.z * b.w + a.x * b.y);
+  r.w = (a.w * b.w - a.y * b.y) - (a.z * b.z + a.x * b.x);
+  return r;
+}
+inline QuatLanes Conjugate(const QuatLanes& q) { return {q.w, -q.x, -q.y, -q.z}; }
+
+// Eigen's Quaternion::toRotationMatrix, term for term.
+inline Mat3Lanes RotationMatrix(const QuatLanes& q) {
+  const Lanes tx = 2.0 * q.x, ty = 2.0 * q.y, tz = 2.0 * q.z;
+  const Lanes twx = tx * q.w, twy = ty * q.w, twz = tz * q.w;
+  const Lanes txx = tx * q.x, txy = ty * q.x, txz = tz * q.x;
+  const Lanes tyy = ty * q.y, tyz = tz * q.y, tzz = tz * q.z;
+  Mat3Lanes R;
+  R.m[0][0] = 1.0 - (tyy + tzz);
+  R.m[0][1] = txy - twz;
+  R.m[0][2] = txz + twy;
+  R.m[1][0] = txy + twz;
+  R.m[1][1] = 1.0 - (txx + tzz);
+  R.m[1][2] = tyz - twx;
+  R.m[2][0] = txz - twy;
+  R.m[2][1] = tyz + twx;
+  R.m[2][2] = 1.0 - (txx + tyy);
+  return R;
+}
+
+inline Lanes Sqrt(Lanes v) {
+  Lanes r;
+  for (int l = 0; l < kBondLanes; ++l) r[l] = std::sqrt(v[l]);
+  return r;
+}
+
+}  // namespace lanes
+
+// EvaluateBond of four bonds (see the conditions above), without failure: the caller reads
+// the mode loads for the failure index and hands a bond that breaks, or that lies outside
+// the short series, to EvaluateBond.
+inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResult& r) {
+  using namespace lanes;
+  const QuatLanes B_i = Product(in.q_i, in.b_i);
+  const QuatLanes B_j = Product(in.q_j, in.b_j);
+  const QuatLanes dq = Product(Conjugate(B_i), B_j);
+
+  // RotationVector(dq) and HalfRotation(dq), short series only.
+  Lanes sign;
+  for (int l = 0; l < kBondLanes; ++l) sign[l] = dq.w[l] < 0.0 ? -1.0 : 1.0;
+  const Vec3Lanes v{sign * dq.x, sign * dq.y, sign * dq.z};
+  const Lanes w = sign * dq.w;
+  const Lanes s2 = v.x * v.x + v.y * v.y + v.z * v.z;
+  const Lanes inv_w = 1.0 / w;
+  const Lanes t2 = s2 * inv_w * inv_w;
+  const Lanes atan_t_over_t =
+      1.0 - t2 * (1.0 / 3.0 - t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0 - t2 / 9.0)));
+  const Vec3Lanes theta = Scale((2.0 * inv_w) * atan_t_over_t, v);
+  const Lanes h_w = 1.0 + w;
+  const Lanes inv_norm = 1.0 / Sqrt(2.0 * h_w);
+  const QuatLanes half{h_w * inv_norm, v.x * inv_norm, v.y * inv_norm, v.z * inv_norm};
+
+  const Mat3Lanes R_m = RotationMatrix(Product(B_i, half));
+  const Vec3Lanes u = TransposeTimes(R_m, in.d);
+
+  const Lanes e_el = (u.x - in.L0) - in.dashpot;
+  const Lanes f_n = in.k_n * e_el;
+  const Vec3Lanes f_local{f_n, in.k_s * u.y, in.k_s * u.z};
+  const Lanes m_y = in.k_b * (theta.y - in.plastic_y);
+  const Lanes m_z = in.k_b * (theta.z - in.plastic_z);
+  const Vec3Lanes m_local{in.k_t * theta.x, m_y, m_z};
+
+  r.f_r = f_n;
+  r.f_s = in.k_s * Sqrt(u.y * u.y + u.z * u.z);
+  r.tau_b = Sqrt(m_y * m_y + m_z * m_z);
+  for (int l = 0; l < kBondLanes; ++l) r.tau_t[l] = std::abs(m_local.x[l]);
+  const Lanes shear = r.f_s * in.inverse_threshold[1];
+  const Lanes bending = r.tau_b * in.inverse_threshold[2];
+  const Lanes twist = r.tau_t * in.inverse_threshold[3];
+  const Lanes tension = r.f_r * in.inverse_threshold[0];
+  for (int l = 0; l < kBondLanes; ++l) {
+    r.failure_estimate[l] = in.hill[l] != 0.0
+                                ? std::max(r.f_r[l], 0.0) * in.inverse_threshold[0][l] + shear[l] +
+                                      bending[l] + twist[l]
+                                : std::max({tension[l], shear[l], bending[l], twist[l]});
+  }
+
+  const Mat3Lanes A = RotationMatrix(B_i);
+  Vec3Lanes f_i = Times(R_m, f_local);
+  const Lanes theta2 = theta.x * theta.x + theta.y * theta.y + theta.z * theta.z;
+  const Lanes c_inverse =
+      1.0 / 12.0 + theta2 * (1.0 / 720.0 + theta2 * (1.0 / 30240.0 + theta2 / 1209600.0));
+  const Vec3Lanes pm = Cross(theta, m_local);
+  const Vec3Lanes m_world =
+      Times(A, Add(Add(m_local, Scale(Splat(0.5), pm)), Scale(c_inverse, Cross(theta, pm))));
+  Vec3Lanes couple{Splat(0.0), Splat(0.0), Splat(0.0)};
+  r.dissipated = Splat(0.0);
+
+  if (in.damped) {
+    const Vec3Lanes omega_m = Scale(Splat(0.5), Add(in.omega_i, in.omega_j));
+    const Vec3Lanes v_r = Sub(in.v_rel, Cross(omega_m, in.d));
+    const Vec3Lanes axis{R_m.m[0][0], R_m.m[1][0], R_m.m[2][0]};
+    const Lanes v_n = Dot(v_r, axis);
+    const Vec3Lanes f_damp =
+        Add(Scale(in.damping_n * v_n, axis), Scale(in.damping_s, Sub(v_r, Scale(v_n, axis))));
+    const Vec3Lanes w_rel = Sub(in.omega_j, in.omega_i);
+    f_i = Add(f_i, f_damp);
+    couple = Add(couple, Scale(in.damping_rot, w_rel));
+    r.dissipated += (Dot(f_damp, v_r) + in.damping_rot * Dot(w_rel, w_rel)) * dt;
+  }
+
+  // InverseTimesHalfLeftJacobianTransposeTimes with the short series of both coefficients.
+  const Vec3Lanes moment = Cross(in.d, f_i);
+  const Lanes a2 = 0.25 * theta2;
+  const Lanes c1 = 0.5 - a2 * (1.0 / 24.0 - a2 * (1.0 / 720.0 - a2 / 40320.0));
+  const Lanes c2 = 1.0 / 6.0 - a2 * (1.0 / 120.0 - a2 * (1.0 / 5040.0 - a2 / 362880.0));
+  const Lanes alpha = 0.5 - 0.5 * c1 - theta2 * (0.125 * c2 - 0.5 * c_inverse * c1);
+  const Lanes beta = c_inverse + 0.25 * (c2 - c1) - 0.25 * theta2 * c_inverse * c2;
+  const Vec3Lanes local = TransposeTimes(A, moment);
+  const Vec3Lanes pv = Cross(theta, local);
+  const Vec3Lanes product = Add(Add(local, Scale(alpha, pv)), Scale(beta, Cross(theta, pv)));
+  const Vec3Lanes moment_j = Times(A, Scale(Splat(0.5), product));
+
+  r.force_i = f_i;
+  r.torque_i = Add(Add(m_world, couple), Sub(moment, moment_j));
+  r.torque_j = Add(Sub(Negate(m_world), couple), moment_j);
+  r.theta2 = theta2;
+  for (int l = 0; l < kBondLanes; ++l) {
+    const bool short_series = s2[l] < 0.25 * kBondSeriesAngle2 * w[l] * w[l] &&
+                              t2[l] < 0.25 * kShortSeriesAngle2 && theta2[l] < kShortSeriesAngle2;
+    r.in_short_series[l] = short_series ? 1.0 : 0.0;
+  }
+}
+
+}  // namespace fibrenet
