@@ -82,10 +82,10 @@ BENCHMARK(BM_EvaluateBond)->Arg(0)->Arg(1);
 // items/s is bonds per second, to compare with BM_EvaluateBond.
 void BM_EvaluateBondLanes(benchmark::State& state) {
   const std::vector<BondCase> batch = BondBatch();
-  const BondLanesType p = LanesTypeOf(BenchBondParams(state.range(0) != 0));
+  const BondLanesType p = LanesTypeOf(BenchBondParams(state.range(0) != 0), 1e-9);
   std::vector<BondLanesInput> groups(kBatch / kBondLanes);
   for (std::size_t k = 0; k < groups.size(); ++k) {
-    groups[k].damped = false;
+    groups[k].damped = groups[k].viscous = false;
     for (int l = 0; l < kBondLanes; ++l) {
       const BondCase& c = batch[k * kBondLanes + l];
       SetLane(groups[k], l, c.g, c.s, p);

@@ -16,7 +16,7 @@ void GatherBondLanes(const World& w, const std::vector<BondLanesType>& types, st
                      BondLanesInput& in) {
   const Particles& p = w.particles;
   const Bonds& bonds = w.bonds;
-  in.damped = false;
+  in.damped = in.viscous = false;
   for (int l = 0; l < kBondLanes; ++l) {
     const std::int64_t b = first + l;
     const std::int32_t i = bonds.i[b], j = bonds.j[b];
@@ -37,7 +37,7 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
   std::vector<BondLanesType> lanes_types(bonds.types.size());
   for (std::size_t t = 0; t < bonds.types.size(); ++t) {
     lanes_take[t] = LanesTakeType(bonds.types[t]);
-    lanes_types[t] = LanesTypeOf(bonds.types[t]);
+    lanes_types[t] = LanesTypeOf(bonds.types[t], dt);
   }
   double inelastic = 0.0, released = 0.0;
   int broke = 0;
@@ -77,6 +77,7 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
         out.AddReaction(
             j, f, Vec3(group.torque_j.x[lane], group.torque_j.y[lane], group.torque_j.z[lane]));
         inelastic += group.dissipated[lane];
+        if (input.viscous) bonds.state[b].dashpot = group.dashpot[lane];
         continue;
       }
       if (bonds.broken[b]) continue;

@@ -7,13 +7,14 @@
 // floating-point units waiting on latency. Four independent chains in the lanes fill them.
 //
 // The lanes take the common case only, and say per lane when the bond needs EvaluateBond:
-// - its type must be elastic without history (LanesTakeType): no Maxwell dashpot, no plastic
-//   yield, so the bond's state does not change;
+// - its type must have no plastic yield (LanesTakeType); the lanes advance a Maxwell
+//   dashpot and return its new extension, which the caller stores for the bonds it takes;
 // - its relative rotation must lie in the short-series range (kShortSeriesAngle2);
 // - it must not reach failure (the caller books the break through EvaluateBond).
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -45,10 +46,18 @@ struct BondLanesType {
   double damping_n = 0.0, damping_s = 0.0, damping_rot = 0.0;
   double inverse_threshold[4] = {0.0, 0.0, 0.0, 0.0};  // f_r, f_s, tau_b, tau_t; 0: never
   double hill = 0.0;  // 1: the ratios add up (paper Eq. 3); 0: the largest counts
+  // Maxwell dashpot: 1 when the type has one, and exp(-dt / tau) over this step (the value
+  // EvaluateBond computes for each bond of the type).
+  double maxwell = 0.0, maxwell_decay = 1.0;
 };
 
-inline BondLanesType LanesTypeOf(const BeamBondParams& p) {
+// The type as the lanes read it for a step of dt [s].
+inline BondLanesType LanesTypeOf(const BeamBondParams& p, double dt) {
   BondLanesType t{p.k_n, p.k_s, p.k_b, p.k_t, p.damping_n, p.damping_s, p.damping_rot};
+  if (p.maxwell_tau > 0.0 && dt > 0.0) {
+    t.maxwell = 1.0;
+    t.maxwell_decay = std::exp(-dt / p.maxwell_tau);
+  }
   if (p.failure == BondFailure::kHill) {
     const double thresholds[4] = {p.F_r0, p.F_s0, p.G_b0, p.G_t0};
     for (int m = 0; m < 4; ++m) t.inverse_threshold[m] = 1.0 / thresholds[m];
@@ -69,7 +78,9 @@ struct BondLanesInput {
   Lanes k_n, k_s, k_b, k_t;
   Lanes damping_n, damping_s, damping_rot;
   Lanes inverse_threshold[4], hill;
-  bool damped = false;  // any lane with damping: else the damping terms are skipped
+  Lanes maxwell, maxwell_decay;
+  bool damped = false;   // any lane with damping: else the damping terms are skipped
+  bool viscous = false;  // any lane with a Maxwell dashpot: else the dashpot is skipped
 };
 
 struct BondLanesResult {
@@ -79,6 +90,7 @@ struct BondLanesResult {
   // The failure index from products with the reciprocal thresholds: within 1e-15 relative
   // of FailureIndex's quotients (its terms are never negative where they add up).
   Lanes failure_estimate;
+  Lanes dashpot;          // the Maxwell dashpot's extension after the step [m]
   Lanes theta2;           // squared relative rotation angle
   Lanes in_short_series;  // 1 where the short series hold, 0 elsewhere
 };
@@ -89,7 +101,8 @@ inline bool LaneHolds(const BondLanesResult& r, int l) {
   return r.in_short_series[l] != 0.0 && r.failure_estimate[l] < 1.0 - 1e-12;
 }
 
-// Puts one bond into lane l of `in`. `damped` is or-ed in: clear it before the first lane.
+// Puts one bond into lane l of `in`. `damped` and `viscous` are or-ed in: clear them before
+// the first lane.
 inline void SetLane(BondLanesInput& in, int l, const BondGeometry& g, const BondState& s,
                     const BondLanesType& p) {
   in.d.x[l] = g.d.x(), in.d.y[l] = g.d.y(), in.d.z[l] = g.d.z();
@@ -108,12 +121,14 @@ inline void SetLane(BondLanesInput& in, int l, const BondGeometry& g, const Bond
   in.damping_rot[l] = p.damping_rot;
   for (int m = 0; m < 4; ++m) in.inverse_threshold[m][l] = p.inverse_threshold[m];
   in.hill[l] = p.hill;
+  in.maxwell[l] = p.maxwell, in.maxwell_decay[l] = p.maxwell_decay;
   in.damped = in.damped || p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0;
+  in.viscous = in.viscous || p.maxwell != 0.0;
 }
 
-// A type the lanes evaluate: its state never changes.
+// A type the lanes evaluate: one without plastic yield.
 inline bool LanesTakeType(const BeamBondParams& p) {
-  return p.maxwell_tau == 0.0 && !(p.yield_moment < std::numeric_limits<double>::infinity());
+  return !(p.yield_moment < std::numeric_limits<double>::infinity());
 }
 
 namespace lanes {
@@ -214,7 +229,22 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
   const Mat3Lanes R_m = RotationMatrix(Product(B_i, half));
   const Vec3Lanes u = TransposeTimes(R_m, in.d);
 
-  const Lanes e_el = (u.x - in.L0) - in.dashpot;
+  // Axial mode with the Maxwell dashpot in series, as EvaluateBond integrates it.
+  const Lanes e = u.x - in.L0;
+  r.dashpot = in.dashpot;
+  r.dissipated = Splat(0.0);
+  if (in.viscous) {
+    const Lanes relaxed = e - (e - in.dashpot) * in.maxwell_decay;
+    const Lanes f_before = in.k_n * (e - in.dashpot);
+    const Lanes f_after = in.k_n * (e - relaxed);
+    const Lanes loss = 0.5 * (f_before + f_after) * (relaxed - in.dashpot);
+    for (int l = 0; l < kBondLanes; ++l) {
+      if (in.maxwell[l] == 0.0) continue;
+      r.dissipated[l] += loss[l];
+      r.dashpot[l] = relaxed[l];
+    }
+  }
+  const Lanes e_el = e - r.dashpot;
   const Lanes f_n = in.k_n * e_el;
   const Vec3Lanes f_local{f_n, in.k_s * u.y, in.k_s * u.z};
   const Lanes m_y = in.k_b * (theta.y - in.plastic_y);
@@ -245,7 +275,6 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
   const Vec3Lanes m_world =
       Times(A, Add(Add(m_local, Scale(Splat(0.5), pm)), Scale(c_inverse, Cross(theta, pm))));
   Vec3Lanes couple{Splat(0.0), Splat(0.0), Splat(0.0)};
-  r.dissipated = Splat(0.0);
 
   if (in.damped) {
     const Vec3Lanes omega_m = Scale(Splat(0.5), Add(in.omega_i, in.omega_j));

@@ -15,7 +15,7 @@
 namespace fibrenet {
 namespace {
 
-constexpr double kR = 16e-6, kL = 32e-6, kE = 10e9, kG = 3e9, kMass = 1e-10;
+constexpr double kR = 16e-6, kL = 32e-6, kE = 10e9, kG = 3e9, kMass = 1e-10, kDt = 1e-9;
 
 Quat RandomRotation(std::mt19937& rng, double max_angle) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -52,9 +52,9 @@ Case RandomCase(std::mt19937& rng, double strain) {
 
 void Gather(const std::vector<Case>& cases, const std::vector<BeamBondParams>& params,
             BondLanesInput& in) {
-  in.damped = false;
+  in.damped = in.viscous = false;
   for (int l = 0; l < kBondLanes; ++l)
-    SetLane(in, l, cases[l].g, cases[l].s, LanesTypeOf(params[l]));
+    SetLane(in, l, cases[l].g, cases[l].s, LanesTypeOf(params[l], kDt));
 }
 
 BeamBondParams Elastic() { return BeamBondParams::FromBeam(kE, kG, kR, kL); }
@@ -69,12 +69,18 @@ BeamBondParams HillDamped() {
   return p;
 }
 
+BeamBondParams Viscous() {
+  BeamBondParams p = HillDamped();
+  p.maxwell_tau = 3e-8;
+  return p;
+}
+
 // Every lane in the short series equals EvaluateBond on its bond bit for bit (forces,
-// torques, dissipation, mode loads); lanes beyond it say so. Lanes mix elastic and damped
-// types, so a damped group carries undamped lanes too.
+// torques, dissipation, mode loads, the dashpot's new extension); lanes beyond it say so.
+// Lanes mix elastic, damped and viscous types, so a damped or viscous group carries lanes
+// without damping or dashpot too.
 TEST(BeamBondLanes, EachLaneEqualsEvaluateBondBitForBit) {
   std::mt19937 rng(11);
-  const double dt = 1e-9;
   int in_series = 0, beyond = 0;
   for (double strain : {0.0, 1e-7, 1e-5, 1e-3, 3e-3, 0.01, 0.02, 0.05}) {
     for (int group = 0; group < 50; ++group) {
@@ -82,15 +88,17 @@ TEST(BeamBondLanes, EachLaneEqualsEvaluateBondBitForBit) {
       std::vector<BeamBondParams> params;
       for (int l = 0; l < kBondLanes; ++l) {
         cases.push_back(RandomCase(rng, strain));
-        params.push_back((group + l) % 3 == 0 ? Elastic() : HillDamped());
+        params.push_back((group + l) % 3 == 0   ? Elastic()
+                         : (group + l) % 3 == 1 ? HillDamped()
+                                                : Viscous());
       }
       BondLanesInput in;
       Gather(cases, params, in);
       BondLanesResult lanes;
-      EvaluateBondLanes(in, dt, lanes);
+      EvaluateBondLanes(in, kDt, lanes);
       for (int l = 0; l < kBondLanes; ++l) {
         BondState copy = cases[l].s;
-        const BondResult r = EvaluateBond(cases[l].g, params[l], copy, dt);
+        const BondResult r = EvaluateBond(cases[l].g, params[l], copy, kDt);
         const double theta2 = RotationVector((cases[l].g.q_i * cases[l].s.b_i).conjugate() *
                                              (cases[l].g.q_j * cases[l].s.b_j))
                                   .squaredNorm();
@@ -117,6 +125,7 @@ TEST(BeamBondLanes, EachLaneEqualsEvaluateBondBitForBit) {
         EXPECT_EQ(lanes.torque_j.y[l], r.torque_j.y());
         EXPECT_EQ(lanes.torque_j.z[l], r.torque_j.z());
         EXPECT_EQ(lanes.dissipated[l], r.dissipated);
+        EXPECT_EQ(lanes.dashpot[l], copy.dashpot);
         EXPECT_EQ(lanes.f_r[l], r.f_r);
         EXPECT_EQ(lanes.f_s[l], r.f_s);
         EXPECT_EQ(lanes.tau_b[l], r.tau_b);
@@ -159,7 +168,7 @@ TEST(BeamBondLanes, FailureEstimateAgreesWithTheFailureIndex) {
     BondLanesInput in;
     Gather(cases, params, in);
     BondLanesResult lanes;
-    EvaluateBondLanes(in, 1e-9, lanes);
+    EvaluateBondLanes(in, kDt, lanes);
     for (int l = 0; l < kBondLanes; ++l) {
       if (lanes.in_short_series[l] == 0.0) continue;
       const double index =
@@ -177,12 +186,10 @@ TEST(BeamBondLanes, FailureEstimateAgreesWithTheFailureIndex) {
   EXPECT_GT(handed_over, 100);
 }
 
-TEST(BeamBondLanes, TakeOnlyTypesWithoutHistory) {
+TEST(BeamBondLanes, TakeEveryTypeWithoutPlasticYield) {
   EXPECT_TRUE(LanesTakeType(Elastic()));
   EXPECT_TRUE(LanesTakeType(HillDamped()));
-  BeamBondParams maxwell = Elastic();
-  maxwell.maxwell_tau = 1e-6;
-  EXPECT_FALSE(LanesTakeType(maxwell));
+  EXPECT_TRUE(LanesTakeType(Viscous()));
   BeamBondParams plastic = Elastic();
   plastic.yield_moment = 1e-9;
   EXPECT_FALSE(LanesTakeType(plastic));
@@ -199,14 +206,15 @@ TEST(BeamBondLanes, TheBondLoopEqualsEvaluateBondInOrder) {
   World w;
   w.cell.lo = Vec3(-1.0, -1.0, -1.0);
   w.cell.hi = Vec3(1.0, 1.0, 1.0);
-  BeamBondParams maxwell = HillDamped();
-  maxwell.maxwell_tau = 1e-7;
+  BeamBondParams plastic = HillDamped();
+  plastic.yield_moment = 1e-9;
   BeamBondParams weak = HillDamped();
   weak.F_r0 = weak.F_s0 = 1e-6;  // breaks at once
   weak.HillDefaults();
-  const std::int32_t types[6] = {w.bonds.AddType(Elastic()),  w.bonds.AddType(HillDamped()),
+  const std::int32_t types[7] = {w.bonds.AddType(Elastic()),  w.bonds.AddType(HillDamped()),
                                  w.bonds.AddType(WeakHill()), w.bonds.AddType(WeakModes()),
-                                 w.bonds.AddType(maxwell),    w.bonds.AddType(weak)};
+                                 w.bonds.AddType(Viscous()),  w.bonds.AddType(plastic),
+                                 w.bonds.AddType(weak)};
   constexpr int kBonds = 203;
   for (int b = 0; b < kBonds; ++b) {
     const double strain = b % 17 == 0 ? 0.05 : 1e-3;
@@ -223,11 +231,14 @@ TEST(BeamBondLanes, TheBondLoopEqualsEvaluateBondInOrder) {
     w.particles.q[i] = c.g.q_i, w.particles.q[j] = c.g.q_j;
     w.particles.v[j] = c.g.v_rel;
     w.particles.omega[i] = c.g.omega_i, w.particles.omega[j] = c.g.omega_j;
-    const std::int32_t type = b == 101 ? types[5] : b % 13 == 0 ? types[4] : types[b % 4];
+    const std::int32_t type = b == 101      ? types[6]
+                              : b % 13 == 0 ? types[5]
+                              : b % 7 == 3  ? types[4]
+                                            : types[b % 4];
     w.bonds.Add(i, j, type, BondKind::kFibreFibre, c.s);
   }
   w.bonds.broken[7] = 1;
-  w.settings.dt = 1e-9;
+  w.settings.dt = kDt;
 
   World reference = w;
   for (std::size_t b = 0; b < reference.bonds.size(); ++b) {
