@@ -3,9 +3,10 @@
 // then fibre-fibre bonds form between touching particles of
 // different fibres (bonding.h); the plate lifts and the sheet springs back until settled.
 //
-// Pressing is quasi-static: it may use mass scaling, guarded by the ratio of kinetic
-// energy to the plate's work at the end of the compression (reported; a warning when it
-// exceeds kinetic_work_tolerance, default 1%). While the plate approaches the web or rests
+// Pressing is quasi-static: it may use mass scaling, guarded by the ratio of the kinetic
+// energy beyond the affine squeeze (velocity rising linearly from the wire to the plate) to
+// the plate's work at the end of the compression (reported; a warning when it exceeds
+// kinetic_work_tolerance, default 1%). While the plate approaches the web or rests
 // (hold, springback) a background drag with relaxation time damping_time
 // (F = -m_mean / damping_time * v) takes out residual motion and elastic ringing; it is off
 // while the plate presses, where it would resist the squeeze itself. Contacts damp through
