@@ -287,6 +287,12 @@ CompressionResult RunCompressionTest(const Network& net, const CompressionSettin
       {"zd_drag_load_ratio", f.drag_guard, "-"},
       {"zd_mass_scale", base.mass_scale, "-"},
   };
+  // The loading branch against the van Wyk form p = k (phi^n - phi0^n): its exponent, and
+  // how much of the curve the form explains. A curve that is no power law in phi (a bonded
+  // sheet stiff from the first touch) puts n at the fit's lower bound, 1, with a low r2.
+  const VanWykFit wyk = FitVanWyk(base.curve, FibreVolume(net) / (net.Area() * base.h0));
+  res.metrics.push_back({"zd_van_wyk_exponent", wyk.n, "-"});
+  res.metrics.push_back({"zd_van_wyk_r2", wyk.r2, "-"});
   res.curves.push_back(std::move(base.curve));
   if (!s.attribution) return res;
 

@@ -94,6 +94,13 @@ TEST(ZdCompression, TheSlowToeKeepsAPressedSheetQuasiStatic) {
   EXPECT_GT(approach.steps, constant.steps);
   EXPECT_NEAR(approach.Value("zd_modulus_kPa"), slow_toe.Value("zd_modulus_kPa"),
               0.05 * slow_toe.Value("zd_modulus_kPa"));
+  // The van Wyk fit of the loading branch is reported, within the fit's range.
+  std::printf("van Wyk: n = %.3g, r2 = %.4g\n", slow_toe.Value("zd_van_wyk_exponent"),
+              slow_toe.Value("zd_van_wyk_r2"));
+  EXPECT_GE(slow_toe.Value("zd_van_wyk_exponent"), 1.0);
+  EXPECT_LE(slow_toe.Value("zd_van_wyk_exponent"), 12.0);
+  EXPECT_GE(slow_toe.Value("zd_van_wyk_r2"), 0.0);
+  EXPECT_LE(slow_toe.Value("zd_van_wyk_r2"), 1.0);
 }
 
 // A loop stopped at a low pressure, in the slow toe: the platen must go back up at the speed

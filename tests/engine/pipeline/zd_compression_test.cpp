@@ -46,6 +46,26 @@ CompressionSettings MatCompression() {
   return s;
 }
 
+// A loading curve of exactly the van Wyk form gives back its exponent, and its r2 is 1.
+TEST(ZdCompression, VanWykFitRecoversAKnownExponent) {
+  for (double n : {2.0, 3.0, 5.5}) {
+    const double phi_h0 = 0.05, k = 2e6;
+    Curve c;
+    c.columns = {"strain", "pressure_Pa", "branch"};
+    for (int i = 0; i <= 100; ++i) {
+      const double strain = 0.8 * i / 100.0;
+      const double phi = phi_h0 / (1.0 - strain);
+      c.Add({strain, k * (std::pow(phi, n) - std::pow(phi_h0, n)), 0.0});
+    }
+    c.Add({0.7, 1.0, 1.0});  // the unloading branch is left out
+    const VanWykFit fit = FitVanWyk(c, phi_h0);
+    EXPECT_NEAR(fit.n, n, 0.011);
+    EXPECT_NEAR(fit.k, k, 0.05 * k);
+    EXPECT_NEAR(fit.phi0, phi_h0, 0.02 * phi_h0);
+    EXPECT_GT(fit.r2, 0.9999);
+  }
+}
+
 const CompressionResult& MatResult() {
   static const CompressionResult r = RunCompressionTest(LooseMat(), MatCompression());
   return r;
