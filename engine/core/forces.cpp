@@ -32,13 +32,11 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
   Particles& p = w.particles;
   Bonds& bonds = w.bonds;
   const double dt = w.settings.dt;
-  // Types the lanes take (beam_bond_lanes.h); a bond of another type goes alone.
-  std::vector<std::uint8_t> lanes_take(bonds.types.size());
+  // The bond types as the lanes read them (beam_bond_lanes.h); a bond of a type they do not
+  // take goes alone.
   std::vector<BondLanesType> lanes_types(bonds.types.size());
-  for (std::size_t t = 0; t < bonds.types.size(); ++t) {
-    lanes_take[t] = LanesTakeType(bonds.types[t]);
+  for (std::size_t t = 0; t < bonds.types.size(); ++t)
     lanes_types[t] = LanesTypeOf(bonds.types[t], dt);
-  }
   double inelastic = 0.0, released = 0.0;
   int broke = 0;
 #pragma omp parallel reduction(+ : inelastic, released) reduction(| : broke)
@@ -52,7 +50,7 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
     const auto lanes_fit = [&](std::int64_t b) {
       if (last - b < kBondLanes) return false;
       for (int l = 0; l < kBondLanes; ++l)
-        if (bonds.broken[b + l] || !lanes_take[bonds.type[b + l]]) return false;
+        if (bonds.broken[b + l] || !lanes_types[bonds.type[b + l]].taken) return false;
       return true;
     };
     // The forces go out bond by bond in order either way, so the sums keep their order.

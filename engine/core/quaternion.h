@@ -16,6 +16,27 @@ inline constexpr double kBondSeriesAngle2 = 0.04;
 // multiplications that each bond evaluation waits on.
 inline constexpr double kShortSeriesAngle2 = 1e-3;
 
+// The short series, written once for any arithmetic type T (double here; the bond lanes of
+// beam_bond_lanes.h evaluate the very same polynomials on four values at a time).
+// atan(t) / t at t2 = t^2 < kShortSeriesAngle2 / 4.
+template <class T>
+inline T AtanOverTShortSeries(T t2) {
+  return 1.0 - t2 * (1.0 / 3.0 - t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0 - t2 / 9.0)));
+}
+// c1, c2 and c of the SO(3) Jacobians below, at a2 < kShortSeriesAngle2.
+template <class T>
+inline T LeftJacobianC1ShortSeries(T a2) {
+  return 0.5 - a2 * (1.0 / 24.0 - a2 * (1.0 / 720.0 - a2 / 40320.0));
+}
+template <class T>
+inline T LeftJacobianC2ShortSeries(T a2) {
+  return 1.0 / 6.0 - a2 * (1.0 / 120.0 - a2 * (1.0 / 5040.0 - a2 / 362880.0));
+}
+template <class T>
+inline T InverseLeftJacobianShortSeries(T a2) {
+  return 1.0 / 12.0 + a2 * (1.0 / 720.0 + a2 * (1.0 / 30240.0 + a2 / 1209600.0));
+}
+
 // Rotation vector (axis * angle, radians) of a unit quaternion, angle in [0, pi].
 inline Vec3 RotationVector(const Quat& q) {
   // Take the shorter way round: q and -q are the same rotation.
@@ -31,7 +52,7 @@ inline Vec3 RotationVector(const Quat& q) {
     const double t2 = s2 * inv_w * inv_w;
     const double atan_t_over_t =
         t2 < 0.25 * kShortSeriesAngle2
-            ? 1.0 - t2 * (1.0 / 3.0 - t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0 - t2 / 9.0)))
+            ? AtanOverTShortSeries(t2)
             : 1.0 - t2 * (1.0 / 3.0 -
                           t2 * (1.0 / 5.0 -
                                 t2 * (1.0 / 7.0 -
@@ -96,10 +117,8 @@ struct LeftJacobianCoefficients {
 // rounding (the terms left out are below 1e-19), where the closed forms lose digits; below
 // kShortSeriesAngle2 so are the series to a^6 (the terms left out below 2e-18 relative).
 inline LeftJacobianCoefficients LeftJacobianCoefficientsAt(double a2) {
-  if (a2 < kShortSeriesAngle2) {
-    return {0.5 - a2 * (1.0 / 24.0 - a2 * (1.0 / 720.0 - a2 / 40320.0)),
-            1.0 / 6.0 - a2 * (1.0 / 120.0 - a2 * (1.0 / 5040.0 - a2 / 362880.0))};
-  }
+  if (a2 < kShortSeriesAngle2)
+    return {LeftJacobianC1ShortSeries(a2), LeftJacobianC2ShortSeries(a2)};
   if (a2 < kBondSeriesAngle2) {
     return {0.5 - a2 * (1.0 / 24.0 -
                         a2 * (1.0 / 720.0 -
@@ -116,8 +135,7 @@ inline LeftJacobianCoefficients LeftJacobianCoefficientsAt(double a2) {
 // c at a2 = |phi|^2; below kBondSeriesAngle2 its series to a^10 (the next term is below 1e-19),
 // below kShortSeriesAngle2 its series to a^6 (the next term below 3e-18 relative).
 inline double InverseLeftJacobianCoefficientAt(double a2) {
-  if (a2 < kShortSeriesAngle2)
-    return 1.0 / 12.0 + a2 * (1.0 / 720.0 + a2 * (1.0 / 30240.0 + a2 / 1209600.0));
+  if (a2 < kShortSeriesAngle2) return InverseLeftJacobianShortSeries(a2);
   if (a2 < kBondSeriesAngle2) {
     return 1.0 / 12.0 +
            a2 * (1.0 / 720.0 +
@@ -163,6 +181,16 @@ inline Vec3 InverseLeftJacobianTransposeTimes(const Vec3& phi, double c, const V
   return v + 0.5 * pv + c * phi.cross(pv);
 }
 
+// alpha and beta of the operator below, for any arithmetic type T (as the series above).
+template <class T>
+inline T InverseTimesHalfAlpha(T a2, T c_inverse, T half_c1, T half_c2) {
+  return 0.5 - 0.5 * half_c1 - a2 * (0.125 * half_c2 - 0.5 * c_inverse * half_c1);
+}
+template <class T>
+inline T InverseTimesHalfBeta(T a2, T c_inverse, T half_c1, T half_c2) {
+  return c_inverse + 0.25 * (half_c2 - half_c1) - 0.25 * a2 * c_inverse * half_c2;
+}
+
 // J_l^-T(phi) J_l^T(phi / 2) v as one operator (a bond shares its force couple through it):
 // both factors are polynomials in the cross-product matrix K of phi, and K^3 = -a^2 K, so the
 // product is I + alpha K + beta K^2. c_inverse is InverseLeftJacobianCoefficientAt(a2) and
@@ -170,8 +198,8 @@ inline Vec3 InverseLeftJacobianTransposeTimes(const Vec3& phi, double c, const V
 inline Vec3 InverseTimesHalfLeftJacobianTransposeTimes(const Vec3& phi, double a2, double c_inverse,
                                                        const LeftJacobianCoefficients& half,
                                                        const Vec3& v) {
-  const double alpha = 0.5 - 0.5 * half.c1 - a2 * (0.125 * half.c2 - 0.5 * c_inverse * half.c1);
-  const double beta = c_inverse + 0.25 * (half.c2 - half.c1) - 0.25 * a2 * c_inverse * half.c2;
+  const double alpha = InverseTimesHalfAlpha(a2, c_inverse, half.c1, half.c2);
+  const double beta = InverseTimesHalfBeta(a2, c_inverse, half.c1, half.c2);
   const Vec3 pv = phi.cross(v);
   return v + alpha * pv + beta * phi.cross(pv);
 }

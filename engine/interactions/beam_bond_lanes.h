@@ -39,6 +39,11 @@ struct Mat3Lanes {
   Lanes m[3][3];
 };
 
+// A type the lanes evaluate: one without plastic yield.
+inline bool LanesTakeType(const BeamBondParams& p) {
+  return !(p.yield_moment < std::numeric_limits<double>::infinity());
+}
+
 // A bond type as the lanes read it: its parameters, and the reciprocals of its failure
 // thresholds, with which the lanes estimate the failure index without a division.
 struct BondLanesType {
@@ -49,11 +54,13 @@ struct BondLanesType {
   // Maxwell dashpot: 1 when the type has one, and exp(-dt / tau) over this step (the value
   // EvaluateBond computes for each bond of the type).
   double maxwell = 0.0, maxwell_decay = 1.0;
+  bool taken = false;  // LanesTakeType: else its bonds go through EvaluateBond
 };
 
 // The type as the lanes read it for a step of dt [s].
 inline BondLanesType LanesTypeOf(const BeamBondParams& p, double dt) {
   BondLanesType t{p.k_n, p.k_s, p.k_b, p.k_t, p.damping_n, p.damping_s, p.damping_rot};
+  t.taken = LanesTakeType(p);
   if (p.maxwell_tau > 0.0 && dt > 0.0) {
     t.maxwell = 1.0;
     t.maxwell_decay = std::exp(-dt / p.maxwell_tau);
@@ -91,7 +98,6 @@ struct BondLanesResult {
   // of FailureIndex's quotients (its terms are never negative where they add up).
   Lanes failure_estimate;
   Lanes dashpot;          // the Maxwell dashpot's extension after the step [m]
-  Lanes theta2;           // squared relative rotation angle
   Lanes in_short_series;  // 1 where the short series hold, 0 elsewhere
 };
 
@@ -124,11 +130,6 @@ inline void SetLane(BondLanesInput& in, int l, const BondGeometry& g, const Bond
   in.maxwell[l] = p.maxwell, in.maxwell_decay[l] = p.maxwell_decay;
   in.damped = in.damped || p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0;
   in.viscous = in.viscous || p.maxwell != 0.0;
-}
-
-// A type the lanes evaluate: one without plastic yield.
-inline bool LanesTakeType(const BeamBondParams& p) {
-  return !(p.yield_moment < std::numeric_limits<double>::infinity());
 }
 
 namespace lanes {
@@ -219,8 +220,7 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
   const Lanes s2 = v.x * v.x + v.y * v.y + v.z * v.z;
   const Lanes inv_w = 1.0 / w;
   const Lanes t2 = s2 * inv_w * inv_w;
-  const Lanes atan_t_over_t =
-      1.0 - t2 * (1.0 / 3.0 - t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0 - t2 / 9.0)));
+  const Lanes atan_t_over_t = AtanOverTShortSeries(t2);
   const Vec3Lanes theta = Scale((2.0 * inv_w) * atan_t_over_t, v);
   const Lanes h_w = 1.0 + w;
   const Lanes inv_norm = 1.0 / Sqrt(2.0 * h_w);
@@ -269,8 +269,7 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
   const Mat3Lanes A = RotationMatrix(B_i);
   Vec3Lanes f_i = Times(R_m, f_local);
   const Lanes theta2 = theta.x * theta.x + theta.y * theta.y + theta.z * theta.z;
-  const Lanes c_inverse =
-      1.0 / 12.0 + theta2 * (1.0 / 720.0 + theta2 * (1.0 / 30240.0 + theta2 / 1209600.0));
+  const Lanes c_inverse = InverseLeftJacobianShortSeries(theta2);
   const Vec3Lanes pm = Cross(theta, m_local);
   const Vec3Lanes m_world =
       Times(A, Add(Add(m_local, Scale(Splat(0.5), pm)), Scale(c_inverse, Cross(theta, pm))));
@@ -292,10 +291,9 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
   // InverseTimesHalfLeftJacobianTransposeTimes with the short series of both coefficients.
   const Vec3Lanes moment = Cross(in.d, f_i);
   const Lanes a2 = 0.25 * theta2;
-  const Lanes c1 = 0.5 - a2 * (1.0 / 24.0 - a2 * (1.0 / 720.0 - a2 / 40320.0));
-  const Lanes c2 = 1.0 / 6.0 - a2 * (1.0 / 120.0 - a2 * (1.0 / 5040.0 - a2 / 362880.0));
-  const Lanes alpha = 0.5 - 0.5 * c1 - theta2 * (0.125 * c2 - 0.5 * c_inverse * c1);
-  const Lanes beta = c_inverse + 0.25 * (c2 - c1) - 0.25 * theta2 * c_inverse * c2;
+  const Lanes c1 = LeftJacobianC1ShortSeries(a2), c2 = LeftJacobianC2ShortSeries(a2);
+  const Lanes alpha = InverseTimesHalfAlpha(theta2, c_inverse, c1, c2);
+  const Lanes beta = InverseTimesHalfBeta(theta2, c_inverse, c1, c2);
   const Vec3Lanes local = TransposeTimes(A, moment);
   const Vec3Lanes pv = Cross(theta, local);
   const Vec3Lanes product = Add(Add(local, Scale(alpha, pv)), Scale(beta, Cross(theta, pv)));
@@ -304,7 +302,6 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
   r.force_i = f_i;
   r.torque_i = Add(Add(m_world, couple), Sub(moment, moment_j));
   r.torque_j = Add(Sub(Negate(m_world), couple), moment_j);
-  r.theta2 = theta2;
   for (int l = 0; l < kBondLanes; ++l) {
     const bool short_series = s2[l] < 0.25 * kBondSeriesAngle2 * w[l] * w[l] &&
                               t2[l] < 0.25 * kShortSeriesAngle2 && theta2[l] < kShortSeriesAngle2;
