@@ -39,10 +39,12 @@ struct Cell {
     if (std::abs(d) <= 0.5 * L) return d;
     return d - L * std::nearbyint(d / L);
   }
+  // a = x - lo in [0, L) exactly when the rounded a / L lies in [0, 1) (a < L gives a / L <=
+  // 1 - 2^-53 after rounding), so the division is left to the rare position outside.
   static double WrapInto(double x, double lo, double L) {
-    const double t = (x - lo) / L;
-    if (t >= 0.0 && t < 1.0) return x;
-    return x - L * std::floor(t);
+    const double a = x - lo;
+    if (a >= 0.0 && a < L) return x;
+    return x - L * std::floor(a / L);
   }
 };
 

@@ -151,11 +151,14 @@ void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bon
   for (std::size_t i = 0; i < n; ++i) scratch_offsets_[i + 1] += scratch_offsets_[i];
   scratch_partners_.resize(scratch_offsets_[n]);
   scratch_history_.assign(scratch_offsets_[n], Vec3::Zero());
+  owners_.resize(scratch_offsets_[n]);
   // Indices are stable while the particle count is, so the old rows still apply.
   const bool carry = offsets_.size() == n + 1 && !partners_.empty();
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < rows; ++i) {
     scan_row(i, scratch_partners_.data() + scratch_offsets_[i]);
+    std::fill(owners_.begin() + scratch_offsets_[i], owners_.begin() + scratch_offsets_[i + 1],
+              static_cast<std::int32_t>(i));
     if (!carry) continue;
     // Carry the tangential history of pairs present before (both rows are sorted).
     std::uint32_t old = offsets_[i];
@@ -175,20 +178,19 @@ void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bon
 }
 
 bool NeighbourList::NeedsRebuild(const Particles& p, const Cell& cell) const {
-  if (!valid_ || x_at_build_.size() != p.size()) return true;
-  const double limit2 = 0.25 * skin_ * skin_;
+  if (Stale(p.size())) return true;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
   int moved = 0;
 #pragma omp parallel for schedule(static) reduction(| : moved)
-  for (std::int64_t i = 0; i < n; ++i)
-    moved |= cell.Delta(x_at_build_[i], p.x[i]).squaredNorm() > limit2 ? 1 : 0;
+  for (std::int64_t i = 0; i < n; ++i) moved |= MovedTooFar(i, p.x[i], cell) ? 1 : 0;
   return moved != 0;
 }
 
 std::size_t NeighbourList::MemoryBytes() const {
   return offsets_.capacity() * sizeof(std::uint32_t) + partners_.capacity() * 4 +
-         history_.capacity() * sizeof(Vec3) + x_at_build_.capacity() * sizeof(Vec3) +
-         excl_offsets_.capacity() * 4 + excl_partners_.capacity() * 4 +
+         owners_.capacity() * 4 + history_.capacity() * sizeof(Vec3) +
+         x_at_build_.capacity() * sizeof(Vec3) + excl_offsets_.capacity() * 4 +
+         excl_partners_.capacity() * 4 +
          (cell_of_.capacity() + cell_start_.capacity() + cell_members_.capacity()) * 4 +
          scratch_offsets_.capacity() * 4 + scratch_partners_.capacity() * 4 +
          scratch_history_.capacity() * sizeof(Vec3);

@@ -28,6 +28,14 @@ class NeighbourList {
   // skin: extra distance beyond contact [m], > 0.
   void Build(const Particles& p, const Cell& cell, const Bonds& bonds, double skin);
   bool NeedsRebuild(const Particles& p, const Cell& cell) const;
+  // The two halves of NeedsRebuild, for a caller that checks the displacements inside a pass
+  // over the particles of its own: whether the list needs a build whatever the positions
+  // (never built, invalidated, or another particle count), and whether particle i, now at x,
+  // has moved more than half the skin since the last build.
+  bool Stale(std::size_t particles) const { return !valid_ || x_at_build_.size() != particles; }
+  bool MovedTooFar(std::size_t i, const Vec3& x, const Cell& cell) const {
+    return cell.Delta(x_at_build_[i], x).squaredNorm() > 0.25 * skin_ * skin_;
+  }
   // Forces a rebuild at the next check (after bonds break or particles are added).
   void Invalidate() { valid_ = false; }
 
@@ -35,6 +43,8 @@ class NeighbourList {
   std::size_t RowEnd(std::size_t i) const { return offsets_[i + 1]; }
   std::size_t size() const { return partners_.size(); }
   std::int32_t Partner(std::size_t k) const { return partners_[k]; }
+  // The row that holds entry k, so that a loop can walk the entries without the rows.
+  std::int32_t Owner(std::size_t k) const { return owners_[k]; }
   Vec3& History(std::size_t k) { return history_[k]; }
   const Vec3& History(std::size_t k) const { return history_[k]; }
   const std::vector<std::int32_t>& partners() const { return partners_; }
@@ -54,6 +64,7 @@ class NeighbourList {
 
   std::vector<std::uint32_t> offsets_{0};
   std::vector<std::int32_t> partners_;
+  std::vector<std::int32_t> owners_;
   std::vector<Vec3> history_;
   std::vector<Vec3> x_at_build_;
   // Bonded partners of each particle, compressed rows.

@@ -32,9 +32,12 @@ std::string Simulation::Prepare() {
 }
 
 void Simulation::ComputeForces() {
+  ComputeForces(w_.physics.contacts && w_.neighbours.NeedsRebuild(w_.particles, w_.cell));
+}
+
+void Simulation::ComputeForces(bool rebuild_neighbours) {
   Particles& p = w_.particles;
-  if (w_.physics.contacts && w_.neighbours.NeedsRebuild(p, w_.cell))
-    w_.neighbours.Build(p, w_.cell, w_.bonds, w_.settings.skin);
+  if (rebuild_neighbours) w_.neighbours.Build(p, w_.cell, w_.bonds, w_.settings.skin);
   buffers_.Prepare(p, w_.bonds);
   losses_ = StepLosses{};
   StartForces(w_);
@@ -50,26 +53,30 @@ void Simulation::Step() {
   const std::int64_t n = static_cast<std::int64_t>(p.size());
   const SerialWhenSmall serial(p.size());
   // A non-finite state (set from outside, e.g. by a prescribed motion) is named before its
-  // forces spread it to the neighbours. The smallest bad index is reported.
+  // forces spread it to the neighbours. The smallest bad index is reported. The same pass
+  // checks the neighbour list's skin, which would otherwise read the positions once more.
+  const NeighbourList& nl = w_.neighbours;
+  const bool contacts = w_.physics.contacts;
+  const bool check_skin = contacts && !nl.Stale(p.size());
   std::int64_t bad = n;
-#pragma omp parallel for schedule(static) reduction(min : bad)
-  for (std::int64_t i = 0; i < n; ++i)
+  int moved = 0;
+#pragma omp parallel for schedule(static) reduction(min : bad) reduction(| : moved)
+  for (std::int64_t i = 0; i < n; ++i) {
     if (!p.x[i].allFinite() || !p.v[i].allFinite() || !p.q[i].coeffs().allFinite() ||
         !p.omega[i].allFinite())
       bad = std::min(bad, i);
+    if (check_skin) moved |= nl.MovedTooFar(i, p.x[i], w_.cell) ? 1 : 0;
+  }
   if (bad < n)
     FailAt(static_cast<std::size_t>(bad), "non-finite position, velocity, orientation or spin");
   double wall_work = 0.0;
   for (const Wall& wall : w_.walls) wall_work -= wall.work;
   for (const Blade& blade : w_.blades) wall_work -= blade.work;
-  ComputeForces();
+  ComputeForces(contacts && (!check_skin || moved != 0));
   for (const Wall& wall : w_.walls) wall_work += wall.work;
   for (const Blade& blade : w_.blades) wall_work += blade.work;
-#pragma omp parallel for schedule(static) reduction(min : bad)
-  for (std::int64_t i = 0; i < n; ++i)
-    if (!p.force[i].allFinite() || !p.torque[i].allFinite()) bad = std::min(bad, i);
-  if (bad < n) FailAt(static_cast<std::size_t>(bad), "non-finite force or torque");
 
+  // Integrate checks the forces and torques it reads (a non-finite one stops the run).
   Integrate();
 
   EnergyLedger& e = w_.energy;
@@ -94,10 +101,16 @@ void Simulation::Integrate() {
   const double limit = w_.settings.max_step_displacement;
   if (ph.local_damping > 0.0) ApplyLocalDamping();
   double work_gravity = 0.0, work_drag = 0.0, work_applied = 0.0;
-  std::int64_t runaway = -1;
+  std::int64_t runaway = -1, bad = n;
 #pragma omp parallel for schedule(static) reduction(+ : work_gravity, work_drag, work_applied) \
-    reduction(max : runaway)
+    reduction(max : runaway) reduction(min : bad)
   for (std::int64_t i = 0; i < n; ++i) {
+    // A non-finite force or torque stops the run after this pass; its particle stays put so
+    // that the report shows where it was.
+    if (!p.force[i].allFinite() || !p.torque[i].allFinite()) {
+      bad = std::min(bad, i);
+      continue;
+    }
     p.v[i] += p.force[i] * (p.inv_mass[i] * dt);
     p.omega[i] += p.torque[i] * (p.inv_inertia[i] * dt);
     const Vec3 dx = p.v[i] * dt;
@@ -114,6 +127,7 @@ void Simulation::Integrate() {
     if (!(dx.squaredNorm() <= limit * limit * p.radius[i] * p.radius[i]))
       runaway = std::max(runaway, i);
   }
+  if (bad < n) FailAt(static_cast<std::size_t>(bad), "non-finite force or torque");
   w_.energy.work_gravity += work_gravity;
   w_.energy.work_drag += work_drag;
   w_.energy.work_applied += work_applied;

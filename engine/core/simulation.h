@@ -32,6 +32,9 @@ class Simulation {
   std::size_t MemoryBytes() const;
 
  private:
+  // Builds the neighbour list first when asked to (Step decides in its state check).
+  void ComputeForces(bool rebuild_neighbours);
+  // Kick and drift; stops the run on a non-finite force or torque or a runaway particle.
   void Integrate();
   // Physics::local_damping: adds the damping to each free particle's force and torque and
   // books the energy it takes out.

@@ -68,9 +68,11 @@ struct ContactResult {
 };
 
 // Evaluates a contact (geometry.dist < r_i + r_j) and advances its tangential history xi
-// by dt. Inline: it runs once per touching pair per step.
-inline ContactResult EvaluateContact(const ContactGeometry& g, const ContactParams& p, Vec3& xi,
-                                     double dt, bool friction) {
+// by dt. Always inlined: it runs once per touching pair per step, and as a call its result
+// went through memory (3% of the fibre-bed step).
+[[gnu::always_inline]] inline ContactResult EvaluateContact(const ContactGeometry& g,
+                                                            const ContactParams& p, Vec3& xi,
+                                                            double dt, bool friction) {
   ContactResult r;
   const double sum_radii = g.r_i + g.r_j;
   const NormalResult nr = EvaluateVanWyk(g.dist, sum_radii, p.normal);
