@@ -41,6 +41,7 @@ slow=(
   'VirtualTests\..*'
   'NetworkChecks\..*'
   'ZdCompression\.(StopsAtTheTargetPressure|TheSlowToeKeepsAPressedSheetQuasiStatic|ALoopStoppedAtALowPressureReturnsNoMoreWorkThanItTook)'
+  'LooseMat\..*'
   'Relief\.SphereRestsOnePocketDepthLowerOverAPocket'
   'Creping\..*'
   'Validation/BeamCases\..*/(cantilever_elastica|euler_buckling|bending_frequency) .*'
