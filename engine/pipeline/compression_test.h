@@ -59,9 +59,10 @@ struct CompressionSettings {
   // Approach (off by default): until the pressure first reaches approach_pressure_fraction x
   // modulus_pressure_lo, the platen comes down at approach_speed_fraction of the full speed
   // (never slower than the slow toe would). No figure is read there: the guard starts at the
-  // modulus window. On the generic tissue, 0.03 to 0.5 saves 20% of the steps with the ZD
-  // metrics within the noise of runs without it (docs/virtual-tests.md); off by default until
-  // more sheets have been through it. 0 (or <= min_speed_fraction): none.
+  // modulus window. On the generic tissue, 0.03 to 0.5 saves 20% of the steps and shifts the
+  // hysteresis by -1.3% and the peak pressure by +1.3% (three replicates each,
+  // docs/virtual-tests.md): off by default, a scene asks for it. 0 (or <= min_speed_fraction):
+  // none.
   double approach_speed_fraction = 0.0;
   double approach_pressure_fraction = 0.25;
   double modulus_pressure_lo = 500.0, modulus_pressure_hi = 2000.0;  // [Pa]
