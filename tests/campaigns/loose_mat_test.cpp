@@ -8,11 +8,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "campaigns/scene.h"
+#include "engine/pipeline/curves.h"
 #include "engine/pipeline/pipeline.h"
 
 namespace fibrenet::campaigns {
@@ -20,11 +22,11 @@ namespace {
 
 const std::string kScenes = FIBRENET_SCENES_DIR;
 
+// NaN when absent, so every check on a missing metric fails.
 double MetricOf(const pipeline::VirtualTestsReport& tests, const std::string& name) {
-  for (const pipeline::Metric& m : tests.metrics)
-    if (m.name == name) return m.value;
-  ADD_FAILURE() << "no metric " << name;
-  return 0.0;
+  const pipeline::Metric* m = pipeline::FindMetric(tests.metrics, name);
+  if (m == nullptr) ADD_FAILURE() << "no metric " << name;
+  return m != nullptr ? m->value : std::numeric_limits<double>::quiet_NaN();
 }
 
 TEST(LooseMat, FollowsTheVanWykFormQuasiStatically) {

@@ -15,7 +15,7 @@ namespace {
 
 // 100 straight 0.5 mm fibres of 20 um, oriented at random in 3D, in a 1 mm x 1 mm x 1 mm box
 // (10 g/m^2 at 1% consistency): fibre volume fraction ~1.6%.
-Network LooseMat() {
+Network FloatingMat() {
   SheetSpec sheet;
   sheet.Lx = sheet.Ly = 1e-3;
   sheet.basis_weight = 0.010;
@@ -65,10 +65,10 @@ TEST(ZdCompression, VanWykFitRecoversAKnownExponent) {
 }
 
 TEST(ZdCompression, StopsAtTheTargetPressure) {
-  const CompressionResult full = RunCompressionTest(LooseMat(), MatCompression());
+  const CompressionResult full = RunCompressionTest(FloatingMat(), MatCompression());
   CompressionSettings s = MatCompression();
   s.max_pressure = 0.2 * full.Value("zd_peak_pressure_kPa") * 1e3;
-  const CompressionResult r = RunCompressionTest(LooseMat(), s);
+  const CompressionResult r = RunCompressionTest(FloatingMat(), s);
   EXPECT_NEAR(r.Value("zd_peak_pressure_kPa") * 1e3 / s.max_pressure, 1.0, 0.15);
   EXPECT_LT(r.Value("zd_max_strain"), 0.9);
 }
