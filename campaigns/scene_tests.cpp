@@ -83,6 +83,7 @@ pipeline::CompressionSettings ReadCompression(TableReader& r, pipeline::Compress
   c.approach_pressure_fraction =
       r.Number("approach_pressure_fraction", c.approach_pressure_fraction, Closed(0, 1),
                "of modulus_pressure_lo_kPa");
+  c.feedback_above_window = r.Bool("feedback_above_window", c.feedback_above_window);
   c.residual_pressure_fraction = r.Number("residual_pressure_fraction",
                                           c.residual_pressure_fraction, Open(0, 1), "of the peak");
   c.samples = static_cast<int>(r.Integer("samples", c.samples, 10, 100000));

@@ -99,6 +99,10 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
   const double tau = s.quasi_static.drag_time_fraction * loading_time;
   const auto every = std::max<std::int64_t>(
       1, static_cast<std::int64_t>(loading_time / run.dt / s.samples));
+  // Feedback above the window: its control interval, 1/400 of the loading at the full speed.
+  const auto control_every =
+      std::max<std::int64_t>(1, static_cast<std::int64_t>(loading_time / run.dt / 400.0));
+  bool feedback = false;  // on once the pressure has passed the window's top
 
   run.curve.name = name;
   run.curve.columns = {"strain",        "pressure_Pa", "gap_m",        "kinetic_J",
@@ -139,6 +143,17 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
     if (sign < 0 && !approaching && -w.walls[1].vz < speed) {
       const double faster = loading_speed(platen_work());
       if (faster > -1.01 * w.walls[1].vz) set_platen_velocity(-faster);
+    }
+    if (s.feedback_above_window && sign < 0 && !approaching) {
+      feedback = feedback || pressure > s.modulus_pressure_hi;
+      if (feedback && step % control_every == 0) {
+        const double work = platen_work();
+        const double ratio = work > 0.0 ? FluctuatingKineticEnergy(w, held, field()) / work : 0.0;
+        const double gain = ratio > 0.0 ? std::clamp(std::sqrt(allowed / ratio), 0.5, 1.05) : 1.05;
+        const double now = -w.walls[1].vz;
+        const double next = std::clamp(std::max(now * gain, loading_speed(work)), 0.0, speed);
+        if (next != now) set_platen_velocity(-next);
+      }
     }
     if (sign < 0 && pressure > peak) {
       peak = pressure;

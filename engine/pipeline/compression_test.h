@@ -65,6 +65,15 @@ struct CompressionSettings {
   // none.
   double approach_speed_fraction = 0.0;
   double approach_pressure_fraction = 0.25;
+  // Feedback above the window (off by default): once the pressure has passed
+  // modulus_pressure_hi, the platen may go faster than the slow toe's rule, as far as the
+  // kinetic energy it measures (beyond the affine field) allows: every 1/400 of the loading
+  // time at the full speed, the speed is multiplied by sqrt(toe_kinetic_share x tolerance /
+  // (kinetic energy / platen work)), at most x 1.05 and at least x 0.5, and never set below
+  // the rule. The rule assumes the sheet's motion beyond the affine field is as large as the
+  // affine field's; past a few kPa it is a tenth of that or less. The modulus window is run
+  // as without it, so zd_modulus_kPa does not change (docs/virtual-tests.md).
+  bool feedback_above_window = false;
   double modulus_pressure_lo = 500.0, modulus_pressure_hi = 2000.0;  // [Pa]
   double residual_pressure_fraction = 0.01;
   int samples = 400;              // curve points over the loading
