@@ -168,6 +168,7 @@ SoftnessResult RunSoftnessTest(const Network& net, const SoftnessSettings& s,
   const CompressionResult* zd = inputs.compression;
   if (!zd) {
     own_zd = RunCompressionTest(net, s.compression, progress);
+    res.steps += own_zd.steps;
     for (auto& c : own_zd.curves) res.curves.push_back(c);
     for (auto& warn : own_zd.warnings) res.warnings.push_back(warn);
     zd = &own_zd;
@@ -179,6 +180,7 @@ SoftnessResult RunSoftnessTest(const Network& net, const SoftnessSettings& s,
   double bending = std::numeric_limits<double>::quiet_NaN();
   if (s.bending == BendingMethod::kPureBending) {
     BendingResult b = RunBendingTest(net, s.bending_test, progress);
+    res.steps += b.steps;
     bending = Value(b.metrics, "bending_stiffness");
     for (const Metric& m : b.metrics)
       if (m.name != "bending_stiffness") res.metrics.push_back(m);
@@ -192,11 +194,13 @@ SoftnessResult RunSoftnessTest(const Network& net, const SoftnessSettings& s,
     if (!md) {
       t.axis = LoadAxis::kMD;
       own_md = RunTensileTest(net, t, progress);
+      res.steps += own_md.steps;
       md = &own_md;
     }
     if (!cd) {
       t.axis = LoadAxis::kCD;
       own_cd = RunTensileTest(net, t, progress);
+      res.steps += own_cd.steps;
       cd = &own_cd;
     }
     const double S = std::sqrt(md->Value("tensile_modulus_N_per_m") *

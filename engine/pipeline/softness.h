@@ -34,6 +34,7 @@
 //                            generic tissue of docs/virtual-tests.md.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -89,6 +90,7 @@ struct SoftnessResult {
   // plus the bending curve (kPureBending) and any compression run here.
   std::vector<Curve> curves;
   std::vector<std::string> warnings;
+  std::int64_t steps = 0;  // of the tests it ran itself (compression, bending, tensile)
 
   double Value(const std::string& name) const;
 };

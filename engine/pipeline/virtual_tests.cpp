@@ -78,6 +78,7 @@ VirtualTestsReport RunVirtualTests(const Network& net, const VirtualTestsSpec& s
     inputs.md = md ? &*md : nullptr;
     inputs.cd = cd ? &*cd : nullptr;
     SoftnessResult r = RunSoftnessTest(net, *spec.softness, inputs, progress);
+    report.steps += r.steps;
     report.metrics.insert(report.metrics.end(), r.metrics.begin(), r.metrics.end());
     report.curves.insert(report.curves.end(), r.curves.begin(), r.curves.end());
     Append(report, r.warnings);

@@ -174,6 +174,16 @@ TEST(VirtualTests, TinySheetReportsEveryMetric) {
   EXPECT_GT(FindMetric(r.metrics, "bending_stiffness")->value, 0.0);
   EXPECT_EQ(r.fibre_energy_at_peak.size(), sheet.network.fibres.size());
   EXPECT_GE(r.curves.size(), 6u);  // tensile md, cd, compression, spectra, profile, bending
+  EXPECT_GT(r.steps, 0);
+
+  // Softness alone runs its own compression and bending test; the stage counts their steps.
+  VirtualTestsSpec softness_only;
+  softness_only.softness = tests.softness;
+  softness_only.softness->compression.quasi_static.loading_steps = 3000;
+  softness_only.softness->compression.samples = 100;
+  const VirtualTestsReport alone = RunVirtualTests(sheet.network, softness_only);
+  ASSERT_NE(FindMetric(alone.metrics, "bulk_softness_um_per_kPa"), nullptr);
+  EXPECT_GT(alone.steps, 1000);  // a bending level alone relaxes for up to 1000 steps
 }
 
 }  // namespace
