@@ -151,7 +151,7 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
         const double ratio = work > 0.0 ? FluctuatingKineticEnergy(w, held, field()) / work : 0.0;
         const double gain = ratio > 0.0 ? std::clamp(std::sqrt(allowed / ratio), 0.5, 1.05) : 1.05;
         const double now = -w.walls[1].vz;
-        const double next = std::clamp(std::max(now * gain, loading_speed(work)), 0.0, speed);
+        const double next = std::min(std::max(now * gain, loading_speed(work)), speed);
         if (next != now) set_platen_velocity(-next);
       }
     }
