@@ -105,6 +105,7 @@ nlohmann::json ToJson(const bench::BenchOptions& o, const bench::BenchResult& r)
           {"peak_rss_mb", r.peak_rss_mb},
           {"peak_rss_bytes_per_particle", r.peak_rss_bytes_per_particle},
           {"threads", r.threads},
+          {"simd", FIBRENET_SIMD_LEVEL},
           {"neighbour_rebuilds", r.neighbour_rebuilds},
           {"neighbour_builds_total", r.neighbour_builds_total},
           {"neighbour_pairs", r.neighbour_pairs},

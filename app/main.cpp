@@ -11,7 +11,7 @@
 int main(int argc, char** argv) {
   fibrenet::FlushDenormalsToZero();  // engine/core/float_mode.h: why
   CLI::App app{"fibrenet: DEM design platform for soft fibre networks", "fibrenet"};
-  app.set_version_flag("--version", std::string(FIBRENET_VERSION) + " (" FIBRENET_GIT_COMMIT ")");
+  app.set_version_flag("--version", std::string(FIBRENET_VERSION) + " (" FIBRENET_GIT_COMMIT ", " FIBRENET_SIMD_LEVEL ")");
   app.require_subcommand(1);
   fibrenet::cli::Context context;
   fibrenet::cli::AddValidateCommand(app, context);
