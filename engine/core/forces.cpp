@@ -11,19 +11,64 @@ namespace fibrenet {
 
 namespace {
 
-// Gathers the four bonds first..first+3 into the lanes' input.
+// Lanes l = 0..3 of value(l), built as whole vectors: four values stored one by one and read
+// back as a vector would stall on the store forwarding.
+template <class Value>
+Lanes Across(const Value& value) {
+  return Lanes{value(0), value(1), value(2), value(3)};
+}
+
+void GatherQuatLanes(const Quat* const (&q)[kBondLanes], QuatLanes& out) {
+  out.w = Across([&](int l) { return q[l]->w(); });
+  out.x = Across([&](int l) { return q[l]->x(); });
+  out.y = Across([&](int l) { return q[l]->y(); });
+  out.z = Across([&](int l) { return q[l]->z(); });
+}
+
+void GatherVec3Lanes(const Vec3 (&v)[kBondLanes], Vec3Lanes& out) {
+  out.x = Across([&](int l) { return v[l].x(); });
+  out.y = Across([&](int l) { return v[l].y(); });
+  out.z = Across([&](int l) { return v[l].z(); });
+}
+
+// Gathers the four bonds first..first+3 into the lanes' input: what SetLane puts in each
+// lane. The motions (relative velocity, spins) only where a type damps: the law reads them
+// for the damping alone.
 void GatherBondLanes(const World& w, const std::vector<BondLanesType>& types, std::int64_t first,
                      BondLanesInput& in) {
   const Particles& p = w.particles;
   const Bonds& bonds = w.bonds;
-  in.damped = in.viscous = false;
-  for (int l = 0; l < kBondLanes; ++l) {
-    const std::int64_t b = first + l;
-    const std::int32_t i = bonds.i[b], j = bonds.j[b];
-    const BondGeometry g{
-        w.cell.Delta(p.x[i], p.x[j]), p.q[i], p.q[j], p.v[j] - p.v[i], p.omega[i], p.omega[j]};
-    SetLane(in, l, g, bonds.state[b], types[bonds.type[b]]);
+  const std::int32_t* i = &bonds.i[first];
+  const std::int32_t* j = &bonds.j[first];
+  const std::int32_t* type = &bonds.type[first];
+  const BondState* state = &bonds.state[first];
+  if (type[0] == type[1] && type[0] == type[2] && type[0] == type[3]) {
+    SetAllLanesType(in, types[type[0]]);
+  } else {
+    in.damped = in.viscous = false;
+    for (int l = 0; l < kBondLanes; ++l) SetLaneType(in, l, types[type[l]]);
   }
+  Vec3 d[kBondLanes];
+  for (int l = 0; l < kBondLanes; ++l) d[l] = w.cell.Delta(p.x[i[l]], p.x[j[l]]);
+  GatherVec3Lanes(d, in.d);
+  GatherQuatLanes({&p.q[i[0]], &p.q[i[1]], &p.q[i[2]], &p.q[i[3]]}, in.q_i);
+  GatherQuatLanes({&p.q[j[0]], &p.q[j[1]], &p.q[j[2]], &p.q[j[3]]}, in.q_j);
+  GatherQuatLanes({&state[0].b_i, &state[1].b_i, &state[2].b_i, &state[3].b_i}, in.b_i);
+  GatherQuatLanes({&state[0].b_j, &state[1].b_j, &state[2].b_j, &state[3].b_j}, in.b_j);
+  in.L0 = Across([&](int l) { return state[l].L0; });
+  in.dashpot = Across([&](int l) { return state[l].dashpot; });
+  in.plastic_y = Across([&](int l) { return state[l].plastic_y; });
+  in.plastic_z = Across([&](int l) { return state[l].plastic_z; });
+  if (!in.damped) return;
+  Vec3 v_rel[kBondLanes], omega_i[kBondLanes], omega_j[kBondLanes];
+  for (int l = 0; l < kBondLanes; ++l) {
+    v_rel[l] = p.v[j[l]] - p.v[i[l]];
+    omega_i[l] = p.omega[i[l]];
+    omega_j[l] = p.omega[j[l]];
+  }
+  GatherVec3Lanes(v_rel, in.v_rel);
+  GatherVec3Lanes(omega_i, in.omega_i);
+  GatherVec3Lanes(omega_j, in.omega_j);
 }
 
 }  // namespace

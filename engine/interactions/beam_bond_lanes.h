@@ -107,6 +107,33 @@ inline bool LaneHolds(const BondLanesResult& r, int l) {
   return r.in_short_series[l] != 0.0 && r.failure_estimate[l] < 1.0 - 1e-12;
 }
 
+// Puts type p into lane l of `in`. `damped` and `viscous` are or-ed in: clear them before
+// the first lane.
+inline void SetLaneType(BondLanesInput& in, int l, const BondLanesType& p) {
+  in.k_n[l] = p.k_n, in.k_s[l] = p.k_s, in.k_b[l] = p.k_b, in.k_t[l] = p.k_t;
+  in.damping_n[l] = p.damping_n, in.damping_s[l] = p.damping_s;
+  in.damping_rot[l] = p.damping_rot;
+  for (int m = 0; m < 4; ++m) in.inverse_threshold[m][l] = p.inverse_threshold[m];
+  in.hill[l] = p.hill;
+  in.maxwell[l] = p.maxwell, in.maxwell_decay[l] = p.maxwell_decay;
+  in.damped = in.damped || p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0;
+  in.viscous = in.viscous || p.maxwell != 0.0;
+}
+
+// Puts type p into every lane, for four bonds of one type (the common case): each input is
+// one broadcast instead of four stores. Sets `damped` and `viscous`.
+inline void SetAllLanesType(BondLanesInput& in, const BondLanesType& p) {
+  const auto splat = [](double v) { return Lanes{v, v, v, v}; };
+  in.k_n = splat(p.k_n), in.k_s = splat(p.k_s), in.k_b = splat(p.k_b), in.k_t = splat(p.k_t);
+  in.damping_n = splat(p.damping_n), in.damping_s = splat(p.damping_s);
+  in.damping_rot = splat(p.damping_rot);
+  for (int m = 0; m < 4; ++m) in.inverse_threshold[m] = splat(p.inverse_threshold[m]);
+  in.hill = splat(p.hill);
+  in.maxwell = splat(p.maxwell), in.maxwell_decay = splat(p.maxwell_decay);
+  in.damped = p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0;
+  in.viscous = p.maxwell != 0.0;
+}
+
 // Puts one bond into lane l of `in`. `damped` and `viscous` are or-ed in: clear them before
 // the first lane.
 inline void SetLane(BondLanesInput& in, int l, const BondGeometry& g, const BondState& s,
@@ -122,14 +149,7 @@ inline void SetLane(BondLanesInput& in, int l, const BondGeometry& g, const Bond
   }
   in.L0[l] = s.L0, in.dashpot[l] = s.dashpot;
   in.plastic_y[l] = s.plastic_y, in.plastic_z[l] = s.plastic_z;
-  in.k_n[l] = p.k_n, in.k_s[l] = p.k_s, in.k_b[l] = p.k_b, in.k_t[l] = p.k_t;
-  in.damping_n[l] = p.damping_n, in.damping_s[l] = p.damping_s;
-  in.damping_rot[l] = p.damping_rot;
-  for (int m = 0; m < 4; ++m) in.inverse_threshold[m][l] = p.inverse_threshold[m];
-  in.hill[l] = p.hill;
-  in.maxwell[l] = p.maxwell, in.maxwell_decay[l] = p.maxwell_decay;
-  in.damped = in.damped || p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0;
-  in.viscous = in.viscous || p.maxwell != 0.0;
+  SetLaneType(in, l, p);
 }
 
 namespace lanes {
