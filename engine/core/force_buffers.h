@@ -3,7 +3,7 @@
 // thread. Each thread adds straight into the particle arrays when the particle lies in its
 // own range, and queues the contribution otherwise; after the loop each thread applies the
 // queues aimed at its range, from thread 0's queue up. Pair loops hand each thread the
-// interactions of its own range (rows of the neighbour list, bonds sorted by particle), so
+// interactions of its own range (rows of the neighbour list, the bonds of its particles), so
 // with particles ordered in space only pairs that straddle a range boundary are queued.
 //
 // This replaced one full force and torque copy per extra thread, summed over all particles
@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -99,11 +100,15 @@ class ForceBuffers {
   std::pair<std::int64_t, std::int64_t> ParticleRange(int r) const {
     return {bounds_[r], bounds_[r + 1]};
   }
-  // Bonds [first, second) handed to range r: those whose first particle lies in the range
-  // when the bonds are sorted by it, an even split otherwise.
+  // Bonds handed to range r: BondOrder()[first..second). With one range, every bond in id
+  // order (the serial loop). With more, the bonds whose first particle lies in the range,
+  // in the order of that particle (ties by id): each thread's work follows its particles,
+  // so the ranges get equal shares of the fibres' own bonds and of the fibre-fibre bonds
+  // (appended after them), and a range walks its particles' data in order.
   std::pair<std::int64_t, std::int64_t> BondRange(int r) const {
     return {bond_bounds_[r], bond_bounds_[r + 1]};
   }
+  const std::int32_t* BondOrder() const { return bond_order_.data(); }
   Writer WriterFor(int range) { return Writer(*this, range); }
 
   // Applies the queued contributions, each range by its owner, sources in thread order,
@@ -129,7 +134,8 @@ class ForceBuffers {
   }
 
   std::size_t MemoryBytes() const {
-    std::size_t bytes = (bounds_.capacity() + bond_bounds_.capacity()) * sizeof(std::int64_t);
+    std::size_t bytes = (bounds_.capacity() + bond_bounds_.capacity()) * sizeof(std::int64_t) +
+                        bond_order_.capacity() * sizeof(std::int32_t);
     for (const auto& q : queues_) bytes += q.capacity() * sizeof(Queued);
     return bytes;
   }
@@ -145,16 +151,20 @@ class ForceBuffers {
   }
 
   void SplitBonds(const Bonds& bonds) {
-    const std::int64_t nb = static_cast<std::int64_t>(bonds.size());
-    bond_bounds_.assign(ranges_ + 1, nb);
+    const std::size_t nb = bonds.size();
+    bond_order_.resize(nb);
+    std::iota(bond_order_.begin(), bond_order_.end(), 0);
+    bond_bounds_.assign(ranges_ + 1, static_cast<std::int64_t>(nb));
     bond_bounds_[0] = 0;
-    if (std::is_sorted(bonds.i.begin(), bonds.i.end())) {
-      for (int r = 1; r < ranges_; ++r)
-        bond_bounds_[r] =
-            std::lower_bound(bonds.i.begin(), bonds.i.end(), bounds_[r]) - bonds.i.begin();
-    } else {
-      for (int r = 1; r < ranges_; ++r) bond_bounds_[r] = nb * r / ranges_;
-    }
+    if (ranges_ == 1) return;
+    std::stable_sort(bond_order_.begin(), bond_order_.end(),
+                     [&](std::int32_t a, std::int32_t b) { return bonds.i[a] < bonds.i[b]; });
+    for (int r = 1; r < ranges_; ++r)
+      bond_bounds_[r] = std::partition_point(bond_order_.begin(), bond_order_.end(),
+                                             [&](std::int32_t b) {
+                                               return bonds.i[b] < bounds_[r];
+                                             }) -
+                        bond_order_.begin();
   }
 
   std::vector<Vec3>* force_ = nullptr;
@@ -163,6 +173,7 @@ class ForceBuffers {
   std::size_t n_ = 0;
   std::vector<std::int64_t> bounds_{0, 0};
   std::vector<std::int64_t> bond_bounds_{0, 0};
+  std::vector<std::int32_t> bond_order_;
   std::pair<const void*, std::size_t> bond_key_{};
   // queues_[src * ranges + dst]: written by range src's thread, applied by dst's.
   std::vector<std::vector<Queued>> queues_;

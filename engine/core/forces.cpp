@@ -31,17 +31,19 @@ void GatherVec3Lanes(const Vec3 (&v)[kBondLanes], Vec3Lanes& out) {
   out.z = Across([&](int l) { return v[l].z(); });
 }
 
-// Gathers the four bonds first..first+3 into the lanes' input: what SetLane puts in each
-// lane. The motions (relative velocity, spins) only where a type damps: the law reads them
-// for the damping alone.
-void GatherBondLanes(const World& w, const std::vector<BondLanesType>& types, std::int64_t first,
-                     BondLanesInput& in) {
+// Gathers the four bonds ids[0..3] into the lanes' input: what SetLane puts in each lane.
+// The motions (relative velocity, spins) only where a type damps: the law reads them for the
+// damping alone.
+void GatherBondLanes(const World& w, const std::vector<BondLanesType>& types,
+                     const std::int32_t* ids, BondLanesInput& in) {
   const Particles& p = w.particles;
   const Bonds& bonds = w.bonds;
-  const std::int32_t* i = &bonds.i[first];
-  const std::int32_t* j = &bonds.j[first];
-  const std::int32_t* type = &bonds.type[first];
-  const BondState* state = &bonds.state[first];
+  std::int32_t i[kBondLanes], j[kBondLanes], type[kBondLanes];
+  const BondState* state[kBondLanes];
+  for (int l = 0; l < kBondLanes; ++l) {
+    i[l] = bonds.i[ids[l]], j[l] = bonds.j[ids[l]], type[l] = bonds.type[ids[l]];
+    state[l] = &bonds.state[ids[l]];
+  }
   if (type[0] == type[1] && type[0] == type[2] && type[0] == type[3]) {
     SetAllLanesType(in, types[type[0]]);
   } else {
@@ -53,12 +55,12 @@ void GatherBondLanes(const World& w, const std::vector<BondLanesType>& types, st
   GatherVec3Lanes(d, in.d);
   GatherQuatLanes({&p.q[i[0]], &p.q[i[1]], &p.q[i[2]], &p.q[i[3]]}, in.q_i);
   GatherQuatLanes({&p.q[j[0]], &p.q[j[1]], &p.q[j[2]], &p.q[j[3]]}, in.q_j);
-  GatherQuatLanes({&state[0].b_i, &state[1].b_i, &state[2].b_i, &state[3].b_i}, in.b_i);
-  GatherQuatLanes({&state[0].b_j, &state[1].b_j, &state[2].b_j, &state[3].b_j}, in.b_j);
-  in.L0 = Across([&](int l) { return state[l].L0; });
-  in.dashpot = Across([&](int l) { return state[l].dashpot; });
-  in.plastic_y = Across([&](int l) { return state[l].plastic_y; });
-  in.plastic_z = Across([&](int l) { return state[l].plastic_z; });
+  GatherQuatLanes({&state[0]->b_i, &state[1]->b_i, &state[2]->b_i, &state[3]->b_i}, in.b_i);
+  GatherQuatLanes({&state[0]->b_j, &state[1]->b_j, &state[2]->b_j, &state[3]->b_j}, in.b_j);
+  in.L0 = Across([&](int l) { return state[l]->L0; });
+  in.dashpot = Across([&](int l) { return state[l]->dashpot; });
+  in.plastic_y = Across([&](int l) { return state[l]->plastic_y; });
+  in.plastic_z = Across([&](int l) { return state[l]->plastic_z; });
   if (!in.damped) return;
   Vec3 v_rel[kBondLanes], omega_i[kBondLanes], omega_j[kBondLanes];
   for (int l = 0; l < kBondLanes; ++l) {
@@ -87,27 +89,32 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
 #pragma omp parallel reduction(+ : inelastic, released) reduction(| : broke)
   for (int range = ThreadId(); range < buffers.Ranges(); range += TeamSize()) {
     ForceBuffers::Writer out = buffers.WriterFor(range);
-    // Plain names, not a structured binding: the lambda below captures them.
+    // Plain names, not a structured binding: the lambda below captures them. The range's
+    // bonds are order[first..last).
+    const std::int32_t* order = buffers.BondOrder();
     const std::int64_t first = buffers.BondRange(range).first;
     const std::int64_t last = buffers.BondRange(range).second;
     // Four bonds side by side where they can go so; each bond's forces are those of
     // EvaluateBond bit for bit, so the grouping changes no result.
-    const auto lanes_fit = [&](std::int64_t b) {
-      if (last - b < kBondLanes) return false;
-      for (int l = 0; l < kBondLanes; ++l)
-        if (bonds.broken[b + l] || !lanes_types[bonds.type[b + l]].taken) return false;
+    const auto lanes_fit = [&](std::int64_t k) {
+      if (last - k < kBondLanes) return false;
+      for (int l = 0; l < kBondLanes; ++l) {
+        const std::int32_t b = order[k + l];
+        if (bonds.broken[b] || !lanes_types[bonds.type[b]].taken) return false;
+      }
       return true;
     };
     // The forces go out bond by bond in order either way, so the sums keep their order.
     BondLanesInput input;
     BondLanesResult group;
     std::uint32_t from_lanes = 0;  // bit l: bond (group start + l) has its result in group
-    for (std::int64_t b = first; b < last; ++b) {
-      const int lane = static_cast<int>((b - first) % kBondLanes);
+    for (std::int64_t k = first; k < last; ++k) {
+      const std::int32_t b = order[k];
+      const int lane = static_cast<int>((k - first) % kBondLanes);
       if (lane == 0) {
         from_lanes = 0;
-        if (lanes_fit(b)) {
-          GatherBondLanes(w, lanes_types, b, input);
+        if (lanes_fit(k)) {
+          GatherBondLanes(w, lanes_types, order + k, input);
           EvaluateBondLanes(input, dt, group);
           for (int l = 0; l < kBondLanes; ++l)
             if (LaneHolds(group, l)) from_lanes |= 1u << l;
@@ -135,7 +142,7 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
         broke = 1;
         BondBreakEvent e;
         e.step = w.step;
-        e.bond = static_cast<std::int32_t>(b);
+        e.bond = b;
         e.position = p.x[i] + 0.5 * g.d;
         e.f_r = r.f_r;
         e.f_s = r.f_s;
