@@ -43,6 +43,18 @@ inline void SetThreadCount(int n) {
 #endif
 }
 
+// Sets the thread count for its scope and restores the previous one when it ends.
+class ScopedThreadCount {
+ public:
+  explicit ScopedThreadCount(int n) : saved_(ThreadCount()) { SetThreadCount(n); }
+  ~ScopedThreadCount() { SetThreadCount(saved_); }
+  ScopedThreadCount(const ScopedThreadCount&) = delete;
+  ScopedThreadCount& operator=(const ScopedThreadCount&) = delete;
+
+ private:
+  int saved_;
+};
+
 // Worlds with fewer particles than this step on one thread: below it the fork and join of
 // each parallel region costs more than the work it shares (docs/performance.md), and a core
 // taken by another process stalls every barrier. Serial steps are also bit-identical

@@ -107,6 +107,12 @@ inline bool LaneHolds(const BondLanesResult& r, int l) {
   return r.in_short_series[l] != 0.0 && r.failure_estimate[l] < 1.0 - 1e-12;
 }
 
+// Whether bonds of type p need the damping terms, and the Maxwell dashpot.
+inline bool Damps(const BondLanesType& p) {
+  return p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0;
+}
+inline bool IsViscous(const BondLanesType& p) { return p.maxwell != 0.0; }
+
 // Puts type p into lane l of `in`. `damped` and `viscous` are or-ed in: clear them before
 // the first lane.
 inline void SetLaneType(BondLanesInput& in, int l, const BondLanesType& p) {
@@ -116,8 +122,8 @@ inline void SetLaneType(BondLanesInput& in, int l, const BondLanesType& p) {
   for (int m = 0; m < 4; ++m) in.inverse_threshold[m][l] = p.inverse_threshold[m];
   in.hill[l] = p.hill;
   in.maxwell[l] = p.maxwell, in.maxwell_decay[l] = p.maxwell_decay;
-  in.damped = in.damped || p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0;
-  in.viscous = in.viscous || p.maxwell != 0.0;
+  in.damped = in.damped || Damps(p);
+  in.viscous = in.viscous || IsViscous(p);
 }
 
 // Puts type p into every lane, for four bonds of one type (the common case): each input is
@@ -130,8 +136,8 @@ inline void SetAllLanesType(BondLanesInput& in, const BondLanesType& p) {
   for (int m = 0; m < 4; ++m) in.inverse_threshold[m] = splat(p.inverse_threshold[m]);
   in.hill = splat(p.hill);
   in.maxwell = splat(p.maxwell), in.maxwell_decay = splat(p.maxwell_decay);
-  in.damped = p.damping_n > 0.0 || p.damping_s > 0.0 || p.damping_rot > 0.0;
-  in.viscous = p.maxwell != 0.0;
+  in.damped = Damps(p);
+  in.viscous = IsViscous(p);
 }
 
 // Puts one bond into lane l of `in`. `damped` and `viscous` are or-ed in: clear them before

@@ -17,15 +17,6 @@ namespace {
 
 constexpr double kR = 16e-6, kL = 32e-6, kMass = 1e-10;
 
-class Threads {
- public:
-  explicit Threads(int n) : saved_(ThreadCount()) { SetThreadCount(n); }
-  ~Threads() { SetThreadCount(saved_); }
-
- private:
-  int saved_;
-};
-
 // Chains of particles along x (each fibre's own bonds first), then fibre-fibre bonds
 // between random particles, appended after them as the bonding stage does.
 World ChainsWithCrossBonds(int fibres, int per_fibre, int cross, unsigned seed) {
@@ -65,7 +56,7 @@ TEST(ForceBuffers, EachRangeTakesTheBondsOfItsOwnParticlesInTheirOrder) {
   World w = ChainsWithCrossBonds(6, 10, 40, 3);
   const auto nb = static_cast<std::int64_t>(w.bonds.size());
   {
-    Threads one(1);
+    ScopedThreadCount one(1);
     ForceBuffers buffers;
     buffers.Prepare(w.particles, w.bonds);
     ASSERT_EQ(buffers.Ranges(), 1);
@@ -73,7 +64,7 @@ TEST(ForceBuffers, EachRangeTakesTheBondsOfItsOwnParticlesInTheirOrder) {
     EXPECT_EQ(buffers.BondRange(0).second, nb);
     for (std::int64_t k = 0; k < nb; ++k) EXPECT_EQ(buffers.BondOrder()[k], k);
   }
-  Threads two(2);
+  ScopedThreadCount two(2);
   ForceBuffers buffers;
   buffers.Prepare(w.particles, w.bonds);
   ASSERT_EQ(buffers.Ranges(), 2);
@@ -103,7 +94,7 @@ TEST(ForceBuffers, EachRangeTakesTheBondsOfItsOwnParticlesInTheirOrder) {
 TEST(ForceBuffers, TwoThreadsGiveTheBondForcesOfOne) {
   const World start = ChainsWithCrossBonds(40, 30, 400, 9);
   const auto forces_with = [&](int threads) {
-    Threads t(threads);
+    ScopedThreadCount t(threads);
     World w = start;
     ForceBuffers buffers;
     buffers.Prepare(w.particles, w.bonds);

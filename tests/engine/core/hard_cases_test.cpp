@@ -28,15 +28,8 @@ namespace {
 constexpr double kR = 16e-6, kL = 32e-6, kE = 10e9, kG = 3e9;
 constexpr double kMass = 2.5e-7 * kL;  // one diameter of a 25 mg/100 m fibre [kg]
 
-// The cases are small: one thread avoids OpenMP's fork and join on a busy machine.
-class OneThread {
- public:
-  OneThread() : saved_(ThreadCount()) { SetThreadCount(1); }
-  ~OneThread() { SetThreadCount(saved_); }
-
- private:
-  int saved_;
-};
+// The cases are small: each runs on one thread (ScopedThreadCount one(1)), which avoids
+// OpenMP's fork and join on a busy machine.
 
 World EmptyWorld(double width = 1e-3) {
   World w;
@@ -99,7 +92,7 @@ Balance RunAccounted(World& w, Simulation& sim, int steps) {
 }
 
 TEST(HardCases, BondToContactStiffnessRatioOfAMillion) {
-  OneThread one;
+  ScopedThreadCount one(1);
   World w = EmptyWorld(0.5e-3);
   w.physics.contacts = true;
   w.physics.friction = true;
@@ -128,7 +121,7 @@ TEST(HardCases, BondToContactStiffnessRatioOfAMillion) {
 }
 
 TEST(HardCases, FibreTwistedTenTurnsAndReleased) {
-  OneThread one;
+  ScopedThreadCount one(1);
   World w = EmptyWorld(4e-3);
   const std::int32_t type = w.bonds.AddType(BeamBondParams::FromBeam(kE, kG, kR, kL));
   constexpr int kParticles = 101;
@@ -156,7 +149,7 @@ TEST(HardCases, FibreTwistedTenTurnsAndReleased) {
 }
 
 TEST(HardCases, FibreBentIntoARingWithItsEndsBonded) {
-  OneThread one;
+  ScopedThreadCount one(1);
   World w = EmptyWorld();
   w.physics.contacts = true;
   w.contact.Derive();
@@ -203,7 +196,7 @@ TEST(HardCases, FibreBentIntoARingWithItsEndsBonded) {
 }
 
 TEST(HardCases, HalfOfAllBondsBreakInOneStep) {
-  OneThread one;
+  ScopedThreadCount one(1);
   World w = EmptyWorld(2e-3);
   w.physics.contacts = true;
   w.contact.Derive();
@@ -253,7 +246,7 @@ World CrossingFibres() {
 }
 
 TEST(HardCases, TimeStepTenTimesTooLargeIsReducedToAStableRun) {
-  OneThread one;
+  ScopedThreadCount one(1);
   World w = CrossingFibres();
   const double allowed = w.settings.safety * CriticalTimeStep(w).dt_crit;
   w.settings.dt = 10.0 * allowed;
@@ -289,7 +282,7 @@ TEST(HardCases, TimeStepTenTimesTooLargeIsRefusedClearly) {
 // Without the time-step control the same step blows up; the run must stop with an error
 // that names the step and a particle, not run on with NaN.
 TEST(HardCases, TimeStepTenTimesTooLargeForcedThroughStopsWithAClearError) {
-  OneThread one;
+  ScopedThreadCount one(1);
   World w = CrossingFibres();
   Simulation sim(w);
   sim.Prepare();
