@@ -8,8 +8,6 @@ far below any fidelity change, which still moves the metrics of these chaotic pa
 Usage: scripts/plot_fidelity_study.py STUDY_DIR FIGURE_DIR
 Needs matplotlib (Debian: python3-matplotlib). Exit codes: 0 success, 2 bad input.
 """
-import glob
-import json
 import os
 import statistics
 import sys
@@ -18,6 +16,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from study_runs import load  # noqa: E402
 
 METRICS = ["thickness_um", "bonds_per_fibre", "tensile_modulus_N_per_m",
            "tensile_strength_N_per_m", "bulk_softness_um_per_kPa"]
@@ -36,18 +36,6 @@ FACTORS = [
     ("pressing mass scale", [("pressing_mass_100", 100), ("default", 1000),
                              ("pressing_mass_10000", 10000)], "pressing_mass_100"),
 ]
-
-
-def load(folder, name):
-    runs = {}
-    for path in sorted(glob.glob(os.path.join(folder, name + "_s*.json"))):
-        seed = path.rsplit("_s", 1)[1].removesuffix(".json")
-        try:
-            with open(path) as f:
-                runs[seed] = json.load(f)
-        except (OSError, json.JSONDecodeError) as e:
-            sys.exit(f"error: {path}: {e}")
-    return runs
 
 
 def error_percent(runs, reference, metric):
