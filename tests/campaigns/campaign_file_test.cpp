@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "campaigns/campaign_check.h"
 #include "engine/core/error.h"
 
 namespace fibrenet::campaigns {
@@ -294,6 +295,20 @@ TEST(CampaignFile, LoadsFilesAndResolvesScenesNextToThem) {
         << e.what();
   }
   std::filesystem::remove_all(dir);
+}
+
+// The examples a user starts from must stay valid as the scene keys change: each one loads,
+// and its design variables at their bounds and its fidelity levels' overrides are accepted by
+// its base scene's reader.
+TEST(CampaignFile, EveryExampleCampaignLoadsAndChecksAgainstItsScene) {
+  int campaigns = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(FIBRENET_EXAMPLES_DIR)) {
+    if (entry.path().extension() != ".toml") continue;
+    EXPECT_NO_THROW(CheckAgainstBaseScene(LoadCampaignFile(entry.path().string())))
+        << entry.path();
+    ++campaigns;
+  }
+  EXPECT_GE(campaigns, 4);
 }
 
 }  // namespace
