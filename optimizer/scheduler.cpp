@@ -4,16 +4,19 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
 
 #include "engine/core/error.h"
+#include "engine/core/parallel.h"
 #include "engine/core/stopwatch.h"
 #include "optimizer/task_codec.h"
 
 #if FIBRENET_WITH_MPI
 #include <mpi.h>
+#include <sched.h>
 #endif
 
 namespace fibrenet::optimizer {
@@ -82,6 +85,7 @@ class MpiScheduler : public Scheduler {
     }
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    if (size_ > 1) ShareTheNodesCores();
   }
 
   ~MpiScheduler() override {
@@ -96,7 +100,8 @@ class MpiScheduler : public Scheduler {
   bool is_driver() const override { return rank_ == 0; }
   int evaluators() const override { return size_ > 1 ? size_ - 1 : 1; }
   std::string description() const override {
-    return fmt::format("MPI, {} ranks ({} evaluating)", size_, evaluators());
+    return fmt::format("MPI, {} ranks ({} evaluating, {} thread{} each)", size_, evaluators(),
+                       threads_, threads_ == 1 ? "" : "s");
   }
 
   void Run(const std::vector<Task>& tasks, const BatchCallbacks& callbacks) override {
@@ -178,7 +183,36 @@ class MpiScheduler : public Scheduler {
   }
 
  private:
+  // Sets the evaluating ranks' thread count (ThreadsPerEvaluatingRank) from the affinity
+  // masks of the ranks on this node; every rank takes part. threads_ is what this node's
+  // evaluators use (on the driver: what they were given, for the description).
+  void ShareTheNodesCores() {
+    MPI_Comm node;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+    int node_ranks = 1;
+    MPI_Comm_size(node, &node_ranks);
+    cpu_set_t own;
+    CPU_ZERO(&own);
+    if (sched_getaffinity(0, sizeof own, &own) != 0) CPU_SET(0, &own);
+    std::vector<cpu_set_t> masks(static_cast<std::size_t>(node_ranks));
+    MPI_Allgather(&own, sizeof own, MPI_BYTE, masks.data(), sizeof own, MPI_BYTE, node);
+    cpu_set_t node_cores;
+    CPU_ZERO(&node_cores);
+    for (cpu_set_t& mask : masks) CPU_OR(&node_cores, &node_cores, &mask);
+    int driver_here = rank_ == 0 ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &driver_here, 1, MPI_INT, MPI_MAX, node);
+    MPI_Comm_free(&node);
+    if (std::getenv("OMP_NUM_THREADS") != nullptr) {
+      threads_ = ThreadCount();
+      return;
+    }
+    threads_ = ThreadsPerEvaluatingRank(CPU_COUNT(&own), CPU_COUNT(&node_cores),
+                                        node_ranks - driver_here);
+    if (rank_ != 0) SetThreadCount(threads_);
+  }
+
   EvaluateFn evaluate_;
+  int threads_ = 1;
   bool owns_mpi_ = false;
   int rank_ = 0;
   int size_ = 1;
@@ -187,6 +221,11 @@ class MpiScheduler : public Scheduler {
 #endif  // FIBRENET_WITH_MPI
 
 }  // namespace
+
+int ThreadsPerEvaluatingRank(int own_cores, int node_cores, int evaluating_ranks_on_node) {
+  const int share = node_cores / std::max(evaluating_ranks_on_node, 1);
+  return std::max(1, std::min(own_cores, share));
+}
 
 TaskResult ExecuteTask(const EvaluateFn& evaluate, const Task& task, std::size_t index) {
   TaskResult out;

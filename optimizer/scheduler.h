@@ -50,7 +50,7 @@ class Scheduler {
   virtual bool is_driver() const = 0;
   // Processes that evaluate tasks: 1 serially, K - 1 with K MPI ranks.
   virtual int evaluators() const = 0;
-  // E.g. "serial" or "MPI, 3 ranks (2 evaluating)".
+  // E.g. "serial" or "MPI, 3 ranks (2 evaluating, 1 thread each)".
   virtual std::string description() const = 0;
 
   // Driver only. Runs the batch and returns when every started task has ended. An exception
@@ -69,6 +69,14 @@ TaskResult ExecuteTask(const EvaluateFn& evaluate, const Task& task, std::size_t
 
 // The serial scheduler: this process evaluates every task, in order.
 std::unique_ptr<Scheduler> MakeSerialScheduler(EvaluateFn evaluate);
+
+// OpenMP threads for an evaluating rank: the cores it may run on (its affinity mask), but no
+// more than its share of its node's cores (the union of the masks of the node's ranks) split
+// evenly among the node's evaluating ranks; at least one. Ranks that mpirun left unbound all
+// see every core, and without this each would start a thread per core: on a node with as
+// many evaluators as cores, every parallel region's barrier would wait for a descheduled
+// thread. An OMP_NUM_THREADS in the environment is the user's choice and is kept.
+int ThreadsPerEvaluatingRank(int own_cores, int node_cores, int evaluating_ranks_on_node);
 
 // An MPI scheduler when this process was launched by mpirun with more than one rank (and the
 // build has FIBRENET_ENABLE_MPI), else the serial one. Throws fibrenet::InputError when

@@ -85,6 +85,19 @@ TEST(MakeScheduler, IsSerialOutsideMpirun) {
   EXPECT_EQ(scheduler->description(), "serial");
 }
 
+TEST(ThreadsPerEvaluatingRank, SharesTheNodesCoresAmongItsEvaluators) {
+  // Unbound ranks see every core: 2 evaluators on 2 cores get one thread each, one gets both.
+  EXPECT_EQ(ThreadsPerEvaluatingRank(2, 2, 2), 1);
+  EXPECT_EQ(ThreadsPerEvaluatingRank(2, 2, 1), 2);
+  EXPECT_EQ(ThreadsPerEvaluatingRank(32, 32, 7), 4);
+  // A rank bound to its own cores keeps them (mpirun --map-by ...:pe=4).
+  EXPECT_EQ(ThreadsPerEvaluatingRank(4, 32, 8), 4);
+  EXPECT_EQ(ThreadsPerEvaluatingRank(1, 16, 2), 1);
+  // More evaluators than cores (oversubscribed), or none counted: still one thread.
+  EXPECT_EQ(ThreadsPerEvaluatingRank(2, 2, 5), 1);
+  EXPECT_EQ(ThreadsPerEvaluatingRank(2, 2, 0), 2);
+}
+
 TEST(TaskCodec, RoundTripsExactly) {
   Task task;
   task.design = {{"fibres.length_mm", 0.1 + 0.2}, {"pressing.target_thickness_um", 1e-300}};
