@@ -5,9 +5,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
+#include <thread>
 
 #include "engine/core/error.h"
 #include "engine/core/parallel.h"
@@ -62,7 +64,22 @@ void Send(const std::string& text, int destination, int tag) {
   MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, destination, tag, MPI_COMM_WORLD);
 }
 
-// Receives the message announced by `status` (after MPI_Probe).
+// Waits for a message like MPI_Probe, but sleeps between polls (up to 20 ms, far below an
+// evaluation's time): Open MPI's blocking probe spins on a core, and on a node with as many
+// ranks as cores the waiting driver and idle workers took that core from the evaluating ranks.
+MPI_Status WaitForMessage(int source, int tag) {
+  std::chrono::microseconds pause(100);
+  while (true) {
+    int arrived = 0;
+    MPI_Status status;
+    MPI_Iprobe(source, tag, MPI_COMM_WORLD, &arrived, &status);
+    if (arrived) return status;
+    std::this_thread::sleep_for(pause);
+    pause = std::min(2 * pause, std::chrono::microseconds(20000));
+  }
+}
+
+// Receives the message announced by `status` (after WaitForMessage).
 std::string Receive(const MPI_Status& status) {
   int count = 0;
   MPI_Get_count(&status, MPI_CHAR, &count);
@@ -134,8 +151,7 @@ class MpiScheduler : public Scheduler {
         ++next;
       }
       if (outstanding == 0) break;
-      MPI_Status status;
-      MPI_Probe(MPI_ANY_SOURCE, kReplyTag, MPI_COMM_WORLD, &status);
+      const MPI_Status status = WaitForMessage(MPI_ANY_SOURCE, kReplyTag);
       WorkerReply reply = DecodeReply(Receive(status));
       idle.push_back(status.MPI_SOURCE);
       --outstanding;
@@ -160,8 +176,7 @@ class MpiScheduler : public Scheduler {
   void Serve() override {
     if (rank_ == 0) return;
     while (true) {
-      MPI_Status status;
-      MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+      const MPI_Status status = WaitForMessage(0, MPI_ANY_TAG);
       const std::string text = Receive(status);
       if (status.MPI_TAG == kStopTag) return;
       std::size_t index = 0;
