@@ -61,12 +61,16 @@ class ScopedThreadCount {
 // whatever the thread count.
 constexpr std::size_t kParallelMinParticles = 4096;
 
+// The rule above as a test, for the `if` clause of a per-particle loop that runs outside a
+// SerialWhenSmall scope (e.g. every step of a test rig, beside Simulation::Step).
+inline bool ThreadsPay(std::size_t particles) { return particles >= kParallelMinParticles; }
+
 // Limits the parallel regions started in its scope to one thread when `particles` is below
 // kParallelMinParticles; restores the thread count when it ends.
 class SerialWhenSmall {
  public:
   explicit SerialWhenSmall(std::size_t particles) {
-    if (particles < kParallelMinParticles && ThreadCount() > 1) {
+    if (!ThreadsPay(particles) && ThreadCount() > 1) {
       saved_ = ThreadCount();
       SetThreadCount(1);
     }

@@ -357,7 +357,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   double next_report = progress.interval_s;
   for (std::int64_t step = 1; step <= steps; ++step) {
     const Vec3 tip = w.blades[0].tip;
-#pragma omp parallel for schedule(static) if (n_all >= static_cast<std::int64_t>(kParallelMinParticles))
+#pragma omp parallel for schedule(static) if (ThreadsPay(p.size()))
     for (std::int64_t i = 0; i < n_all; ++i) {
       const Vec3 rel = p.x[i] - tip;
       const double along = rel.x() * face_up.x() + rel.z() * face_up.z();

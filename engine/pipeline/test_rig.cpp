@@ -226,7 +226,7 @@ void SetDampingReference(World& w, const AffineField& field) {
   w.damping_reference.resize(p.size());
   const std::int64_t n = static_cast<std::int64_t>(p.size());
   // Called every step outside Simulation::Step, so it needs its own small-world rule.
-#pragma omp parallel for schedule(static) if (n >= static_cast<std::int64_t>(kParallelMinParticles))
+#pragma omp parallel for schedule(static) if (ThreadsPay(p.size()))
   for (std::int64_t i = 0; i < n; ++i) w.damping_reference[i] = field.At(p.x[i]);
 }
 
@@ -238,7 +238,7 @@ void ApplyAffineDrag(World& w, const std::vector<std::uint8_t>& held, const Affi
   w.applied_torque.resize(p.size(), Vec3::Zero());
   const double rate = 1.0 / tau;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
-#pragma omp parallel for schedule(static) if (n >= static_cast<std::int64_t>(kParallelMinParticles))
+#pragma omp parallel for schedule(static) if (ThreadsPay(p.size()))
   for (std::int64_t i = 0; i < n; ++i) {
     if (held[i]) {
       w.applied_force[i].setZero();
