@@ -160,6 +160,9 @@ pipeline::BondingSettings ReadBonding(TableReader& r) {
   b.rest_length = r.Choice("rest_length", "current", {"current", "contact"}) == "contact"
                       ? pipeline::RestLength::kContact
                       : pipeline::RestLength::kCurrent;
+  b.share = r.Choice("share", "particle", {"particle", "crossing"}) == "crossing"
+                ? pipeline::BondShare::kCrossing
+                : pipeline::BondShare::kParticle;
   b.transverse_modulus = r.Number("transverse_modulus_GPa", 1.0, OpenClosed(0, 1000), "GPa") * 1e9;
   b.transverse_shear_modulus =
       r.Number("transverse_shear_modulus_GPa", 0.3, OpenClosed(0, 1000), "GPa") * 1e9;

@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "engine/pipeline/bond_crossings.h"
 #include "engine/pipeline/pairs.h"
 
 namespace fibrenet::pipeline {
@@ -27,22 +29,35 @@ std::string BondingSettings::Validate() const {
   return {};
 }
 
+namespace {
+
+// The bond of one crossing (or one particle pair) between particles of radii r_a <= r_b,
+// shared among `share` particle bonds.
+BeamBondParams SharedBondParams(const BondingSettings& s, double r_a, double r_b, int share) {
+  BeamBondParams p = BeamBondParams::FromBeam(s.transverse_modulus, s.transverse_shear_modulus,
+                                              s.bond_radius_fraction * r_a, r_a + r_b);
+  const double part = 1.0 / share;
+  p.k_n *= part, p.k_s *= part, p.k_b *= part, p.k_t *= part;
+  p.failure = BondFailure::kHill;
+  p.F_r0 = s.F_r0 * part;
+  p.F_s0 = s.F_s0 * part;
+  p.HillDefaults();
+  return p;
+}
+
+}  // namespace
+
 std::size_t FormFibreFibreBonds(Network& net, const BondingSettings& s) {
   World& w = net.world;
   Particles& p = w.particles;
-  std::map<std::pair<double, double>, std::int32_t> types;  // (R_i, R_j) sorted -> type
-  auto type_for = [&](double r_a, double r_b) {
-    const auto key = std::minmax(r_a, r_b);
+  // (R_i, R_j) sorted and the share -> type
+  std::map<std::tuple<double, double, int>, std::int32_t> types;
+  auto type_for = [&](std::int32_t i, std::int32_t j, int share) {
+    const auto [r_a, r_b] = std::minmax(p.radius[i], p.radius[j]);
+    const auto key = std::make_tuple(r_a, r_b, share);
     const auto it = types.find(key);
     if (it != types.end()) return it->second;
-    BeamBondParams params = BeamBondParams::FromBeam(
-        s.transverse_modulus, s.transverse_shear_modulus, s.bond_radius_fraction * key.first,
-        key.first + key.second);
-    params.failure = BondFailure::kHill;
-    params.F_r0 = s.F_r0;
-    params.F_s0 = s.F_s0;
-    params.HillDefaults();
-    const std::int32_t t = w.bonds.AddType(params);
+    const std::int32_t t = w.bonds.AddType(SharedBondParams(s, r_a, r_b, share));
     types.emplace(key, t);
     return t;
   };
@@ -50,9 +65,18 @@ std::size_t FormFibreFibreBonds(Network& net, const BondingSettings& s) {
   for (const auto& [i, j] : TouchingPairs(w, s.gap_tolerance)) {
     const Vec3 d = w.cell.Delta(p.x[i], p.x[j]);
     const double rest = s.rest_length == RestLength::kContact ? p.radius[i] + p.radius[j] : 0.0;
-    w.bonds.Add(i, j, type_for(p.radius[i], p.radius[j]), BondKind::kFibreFibre,
-                MakeBondState(d, p.q[i], p.q[j], rest));
+    // Per crossing, the type waits for the crossing's size (below): no unused type is made.
+    const std::int32_t type = s.share == BondShare::kParticle ? type_for(i, j, 1) : 0;
+    w.bonds.Add(i, j, type, BondKind::kFibreFibre, MakeBondState(d, p.q[i], p.q[j], rest));
     ++made;
+  }
+  if (s.share == BondShare::kCrossing) {
+    const BondCrossings crossings = GroupBondsByCrossing(net);
+    for (std::size_t k = 0; k < crossings.bonds.size(); ++k) {
+      const std::int32_t b = crossings.bonds[k];
+      w.bonds.type[b] =
+          type_for(w.bonds.i[b], w.bonds.j[b], crossings.size[crossings.crossing[k]]);
+    }
   }
   w.neighbours.Invalidate();  // bonded pairs leave the contact list
   return made;

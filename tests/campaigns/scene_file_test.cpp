@@ -78,6 +78,20 @@ TEST(SceneFile, UnitsAreConvertedToSI) {
   EXPECT_DOUBLE_EQ(s.pressing->bonding->F_s0, 5e-3);
 }
 
+TEST(SceneFile, BondShareIsPerParticleUnlessTheSceneSaysPerCrossing) {
+  EXPECT_EQ(ParseScene(kMinimal, "min.toml").pressing->bonding->share,
+            pipeline::BondShare::kParticle);
+  const std::string crossing = std::string(kMinimal) + "share = \"crossing\"\n";
+  EXPECT_EQ(ParseScene(crossing, "c.toml").pressing->bonding->share,
+            pipeline::BondShare::kCrossing);
+  const std::string msg = InputErrorOf([] {
+    ParseScene(std::string(kMinimal) + "share = \"fibre\"\n", "share.toml");
+  });
+  EXPECT_NE(msg.find("share.toml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pressing.bonding.share"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("crossing"), std::string::npos) << msg;
+}
+
 TEST(SceneFile, DistributionsAreRead) {
   const std::string text = std::string(kMinimal) + R"(
 [fibres.coarseness_mg_per_100m]
