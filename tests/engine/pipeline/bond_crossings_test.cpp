@@ -8,22 +8,12 @@
 #include <gtest/gtest.h>
 
 #include "engine/pipeline/bonding.h"
+#include "tests/engine/pipeline/test_fibre.h"
 
 namespace fibrenet::pipeline {
 namespace {
 
 constexpr double kRadius = 16e-6;
-
-FibreProperties Fibre(double length) {
-  FibreProperties f;
-  f.length = length;
-  f.diameter = 2 * kRadius;
-  f.coarseness = 2.5e-7;
-  f.youngs_modulus = 10e9;
-  f.shear_modulus = 3e9;
-  f.strength = 0.1;
-  return f;
-}
 
 double Length(const std::vector<Vec3>& polyline) {
   double length = 0.0;
@@ -33,7 +23,7 @@ double Length(const std::vector<Vec3>& polyline) {
 
 // A fibre along the polyline with particles `spacing` diameters apart.
 void AddFibre(Network& net, const std::vector<Vec3>& polyline, double spacing) {
-  const FibreProperties f = Fibre(Length(polyline));
+  const FibreProperties f = TestFibre(Length(polyline));
   net.AddFibre(f, PointsAlong(polyline, ParticlesPerFibre(f.length, spacing * f.diameter)), {});
 }
 

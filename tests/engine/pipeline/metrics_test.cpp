@@ -5,24 +5,14 @@
 #include <gtest/gtest.h>
 
 #include "engine/pipeline/bonding.h"
+#include "tests/engine/pipeline/test_fibre.h"
 
 namespace fibrenet::pipeline {
 namespace {
 
-FibreProperties Straight(double length) {
-  FibreProperties f;
-  f.length = length;
-  f.diameter = 32e-6;
-  f.coarseness = 2.5e-7;
-  f.youngs_modulus = 10e9;
-  f.shear_modulus = 3e9;
-  f.strength = 0.1;
-  return f;
-}
-
 // A straight fibre from a to b with particles one diameter apart.
 void AddStraight(Network& net, const Vec3& a, const Vec3& b) {
-  const FibreProperties f = Straight((b - a).norm());
+  const FibreProperties f = TestFibre((b - a).norm());
   net.AddFibre(f, PointsAlong({a, b}, ParticlesPerFibre(f.length, f.diameter)), {});
 }
 

@@ -3,22 +3,14 @@
 #include <gtest/gtest.h>
 
 #include "engine/pipeline/fibre.h"
+#include "tests/engine/pipeline/test_fibre.h"
 
 namespace fibrenet::pipeline {
 namespace {
 
 constexpr double kRadius = 16e-6, kSpacing = 32e-6;
 
-FibreProperties Straight(int particles) {
-  FibreProperties f;
-  f.length = particles * kSpacing;
-  f.diameter = 2.0 * kRadius;
-  f.coarseness = 2.5e-7;
-  f.youngs_modulus = 10e9;
-  f.shear_modulus = 3e9;
-  f.strength = 0.1;
-  return f;
-}
+FibreProperties Straight(int particles) { return TestFibre(particles * kSpacing); }
 
 // A fibre of `particles` along x starting at (x0, y, z).
 void AddStraightFibre(Network& net, int particles, double x0, double y, double z) {
