@@ -40,38 +40,40 @@ BondCrossings GroupBondsByCrossing(const Network& net) {
     pair_bonds.push_back({fa, fb, i - net.fibres[fa].first_particle,
                           j - net.fibres[fb].first_particle, static_cast<std::int32_t>(k)});
   }
-  std::sort(pair_bonds.begin(), pair_bonds.end(), [](const PairBond& l, const PairBond& r) {
-    return std::tie(l.fibre_a, l.fibre_b, l.bond) < std::tie(r.fibre_a, r.fibre_b, r.bond);
+  // pair_bonds is in bond id order; `by_pair` visits it fibre pair by fibre pair.
+  std::vector<std::int32_t> by_pair(pair_bonds.size());
+  std::iota(by_pair.begin(), by_pair.end(), 0);
+  std::stable_sort(by_pair.begin(), by_pair.end(), [&](std::int32_t l, std::int32_t r) {
+    return std::tie(pair_bonds[l].fibre_a, pair_bonds[l].fibre_b) <
+           std::tie(pair_bonds[r].fibre_a, pair_bonds[r].fibre_b);
   });
 
   // Union-find within each fibre pair's run of bonds (a handful, so all pairs are compared).
   std::vector<std::int32_t> parent(pair_bonds.size());
   std::iota(parent.begin(), parent.end(), 0);
-  for (std::size_t begin = 0; begin < pair_bonds.size();) {
+  for (std::size_t begin = 0; begin < by_pair.size();) {
+    const PairBond& first = pair_bonds[by_pair[begin]];
     std::size_t end = begin + 1;
-    while (end < pair_bonds.size() && pair_bonds[end].fibre_a == pair_bonds[begin].fibre_a &&
-           pair_bonds[end].fibre_b == pair_bonds[begin].fibre_b)
+    while (end < by_pair.size() && pair_bonds[by_pair[end]].fibre_a == first.fibre_a &&
+           pair_bonds[by_pair[end]].fibre_b == first.fibre_b)
       ++end;
-    const std::int32_t reach = std::max(CrossingReach(net.fibres[pair_bonds[begin].fibre_a]),
-                                        CrossingReach(net.fibres[pair_bonds[begin].fibre_b]));
+    const std::int32_t reach = std::max(CrossingReach(net.fibres[first.fibre_a]),
+                                        CrossingReach(net.fibres[first.fibre_b]));
     for (std::size_t m = begin; m < end; ++m)
-      for (std::size_t n = m + 1; n < end; ++n)
-        if (std::abs(pair_bonds[m].place_a - pair_bonds[n].place_a) <= reach &&
-            std::abs(pair_bonds[m].place_b - pair_bonds[n].place_b) <= reach)
-          parent[Root(parent, static_cast<std::int32_t>(n))] =
-              Root(parent, static_cast<std::int32_t>(m));
+      for (std::size_t n = m + 1; n < end; ++n) {
+        const PairBond& u = pair_bonds[by_pair[m]];
+        const PairBond& v = pair_bonds[by_pair[n]];
+        if (std::abs(u.place_a - v.place_a) <= reach && std::abs(u.place_b - v.place_b) <= reach)
+          parent[Root(parent, by_pair[n])] = Root(parent, by_pair[m]);
+      }
     begin = end;
   }
 
   // Number the crossings in the order of their first bond; report bonds in id order.
-  std::vector<std::int32_t> order(pair_bonds.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](std::int32_t l, std::int32_t r) { return pair_bonds[l].bond < pair_bonds[r].bond; });
   BondCrossings out;
   std::vector<std::int32_t> id_of_root(pair_bonds.size(), -1);
-  for (std::int32_t k : order) {
-    std::int32_t& id = id_of_root[Root(parent, k)];
+  for (std::size_t k = 0; k < pair_bonds.size(); ++k) {
+    std::int32_t& id = id_of_root[Root(parent, static_cast<std::int32_t>(k))];
     if (id < 0) {
       id = static_cast<std::int32_t>(out.size.size());
       out.size.push_back(0);
