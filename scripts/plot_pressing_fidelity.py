@@ -69,8 +69,9 @@ def main():
             ax.axhline(level, color="k", lw=0.8, ls="--")
         ax.set_title(SHORT[metric], fontsize=9)
         ax.set_xlabel("paired seeds")
-    axes[0].set_ylabel("safety 0.8 against 0.5 [%] (mean, 95% band; dots: seeds)")
-    fig.suptitle("Pressing time-step safety 0.8 against 0.5, study-fidelity-stages.toml",
+    axes[0].set_ylabel("0.8 against 0.5 [%]")
+    fig.suptitle("Pressing time-step safety 0.8 against 0.5, study-fidelity-stages.toml "
+                 "(line: running mean, band: its 95% interval, dots: seeds)",
                  fontsize=10)
     fig.tight_layout()
     fig.savefig(os.path.join(figures, "pressing_safety_seeds.png"), dpi=120)
