@@ -63,6 +63,13 @@ pipeline::TensileStage ReadTensile(TableReader& r) {
 }
 
 pipeline::CompressionSettings ReadCompression(TableReader& r, pipeline::CompressionSettings c) {
+  using Loading = pipeline::CompressionSettings::Loading;
+  const bool was_stepped = c.loading == Loading::kStepped;
+  c.loading = r.Choice("loading", was_stepped ? "stepped" : "continuous",
+                       {"continuous", "stepped"}) == "stepped"
+                  ? Loading::kStepped
+                  : Loading::kContinuous;
+  c.settle_max_steps = r.Integer("settle_max_steps", c.settle_max_steps, 0, 10'000'000'000LL);
   c.max_strain = r.Number("max_strain", c.max_strain, OpenClosed(0, 0.95), "");
   c.max_pressure =
       r.Number("max_pressure_kPa", c.max_pressure * 1e-3, Closed(0, 1e6), "kPa (0 = strain only)") *

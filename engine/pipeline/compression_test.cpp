@@ -8,6 +8,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/simulation.h"
+#include "engine/pipeline/compression_rig.h"
 
 namespace fibrenet::pipeline {
 
@@ -29,51 +30,22 @@ struct LoopFigures {
   double modulus = kNaN, window_lo = 0.0, window_hi = 0.0;
   double energy_in = 0.0, energy_out = 0.0, hysteresis = kNaN, residual = kNaN;
   double guard = 0.0, drag_guard = 0.0;
+  int snap_throughs = 0;
 };
 
-Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& switches,
-            const std::string& name, const Progress& progress) {
-  World& w = net.world;
+// The continuous loading: the platen comes down without stopping, slowly in the toe (and the
+// approach), and goes back up at the speed it had at the turn. Returns the steps run.
+std::int64_t LoadContinuous(CompressionRig& rig, const CompressionSettings& s,
+                            const Progress& progress) {
+  World& w = rig.w;
   Particles& p = w.particles;
-  if (!w.physics.contacts) {
-    w.physics.contacts = true;
-    w.physics.friction = w.contact.mu > 0.0;
-  }
-  ApplyTestPhysics(net, switches);
-  if (p.size() == 0) throw RunError("compression test: the network has no particles");
-  double z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    p.v[i].setZero();
-    p.omega[i].setZero();
-    z_lo = std::min(z_lo, p.x[i].z() - p.radius[i]);
-    z_hi = std::max(z_hi, p.x[i].z() + p.radius[i]);
-  }
-  Run run;
-  run.h0 = z_hi - z_lo;
-  const double area = w.cell.Lx() * w.cell.Ly();
-  Wall floor;
-  floor.z = z_lo;
-  floor.side = +1;
-  Wall top;
-  top.z = z_hi;
-  top.side = -1;
-  w.walls = {floor, top};
-
-  const double loading_time = s.max_strain / s.strain_rate;
-  run.mass_scale = ChooseMassScale(w, s.quasi_static, loading_time);
-  ApplyQuasiStaticDamping(w, s.quasi_static);
-  const double speed = s.strain_rate * run.h0;
-  const std::vector<std::uint8_t> held(p.size(), 0);
-  int sign = -1;  // -1 platen down (loading), +1 up
-  auto field = [&] {
-    return AffineField{2, z_lo, w.walls[1].z - z_lo, w.walls[1].vz};
-  };
+  const double speed = rig.speed;
   // Kinetic energy of the affine field at the full speed (masses scaled): the platen comes
   // down no faster than keeps it within toe_kinetic_share of the guard's tolerance of the
   // work done so far (the motion beyond the affine field is of the same order).
   double kinetic_full = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i)
-    kinetic_full += 0.5 * p.mass[i] * std::pow(speed * (p.x[i].z() - z_lo) / run.h0, 2);
+    kinetic_full += 0.5 * p.mass[i] * std::pow(speed * (p.x[i].z() - rig.z_lo) / rig.h0, 2);
   const double allowed = s.toe_kinetic_share * s.quasi_static.kinetic_work_tolerance;
   auto loading_speed = [&](double work) {
     if (!(kinetic_full > 0.0)) return speed;  // every particle on the floor: nothing to move
@@ -85,74 +57,48 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
   bool approaching = s.approach_speed_fraction > s.min_speed_fraction;
   w.walls[1].vz = -(approaching ? std::max(loading_speed(0.0), s.approach_speed_fraction * speed)
                                 : loading_speed(0.0));
-  for (std::size_t i = 0; i < p.size(); ++i) p.v[i] = field().At(p.x[i]);
-  // A new platen velocity, with the affine part of the particles' motion changed to match.
-  auto set_platen_velocity = [&](double vz) {
-    const AffineField before = field();
-    w.walls[1].vz = vz;
-    const AffineField after = field();
-    for (std::size_t i = 0; i < p.size(); ++i) p.v[i] += after.At(p.x[i]) - before.At(p.x[i]);
-  };
-  Simulation sim(w);
-  if (std::string warn = sim.Prepare(); !warn.empty()) run.warnings.push_back(warn);
-  run.dt = w.settings.dt;
-  const double tau = s.quasi_static.drag_time_fraction * loading_time;
+  for (std::size_t i = 0; i < p.size(); ++i) p.v[i] = rig.Field().At(p.x[i]);
+  rig.Prepare();
   const auto every = std::max<std::int64_t>(
-      1, static_cast<std::int64_t>(loading_time / run.dt / s.samples));
+      1, static_cast<std::int64_t>(rig.loading_time / rig.dt / s.samples));
   // Feedback above the window: its control interval, 1/400 of the loading at the full speed.
   const auto control_every =
-      std::max<std::int64_t>(1, static_cast<std::int64_t>(loading_time / run.dt / 400.0));
+      std::max<std::int64_t>(1, static_cast<std::int64_t>(rig.loading_time / rig.dt / 400.0));
   bool feedback = false;  // on once the pressure has passed the window's top
 
-  run.curve.name = name;
-  run.curve.columns = {"strain",        "pressure_Pa", "gap_m",        "kinetic_J",
-                       "platen_work_J", "drag_load_ratio", "bonds_broken", "branch"};
-  auto platen_work = [&] { return w.walls[0].work + w.walls[1].work; };
-  // Share of the platen load carried by the drag: |drag virial| / (platen force x gap).
-  auto drag_share = [&] {
-    const double gap = w.walls[1].z - z_lo, lever = w.walls[1].reaction.z() * gap;
-    return lever > 0.0 ? std::abs(DragVirial(w, held, 2, z_lo)) / lever : 0.0;
-  };
   double strain = 0.0, pressure = 0.0, peak = 0.0, strain_at_peak = 0.0;
-  auto sample = [&] {
-    run.curve.Add({strain, pressure, w.walls[1].z - z_lo, FluctuatingKineticEnergy(w, held, field()),
-                   platen_work(), drag_share(),
-                   static_cast<double>(w.bonds.events.size()),
-                   sign < 0 ? 0.0 : 1.0});
-  };
-  sample();
+  int sign = -1;  // -1 platen down (loading), +1 up
+  rig.Sample(false);
   Stopwatch clock;
   double next_report = progress.interval_s;
   std::int64_t step = 0;
   for (;;) {
     if (step >= s.max_steps) {
-      run.warnings.push_back(fmt::format("{}: stopped at max_steps = {} (strain {:.4g})", name,
-                                         s.max_steps, strain));
+      rig.warnings.push_back(fmt::format("{}: stopped at max_steps = {} (strain {:.4g})",
+                                         rig.name, s.max_steps, strain));
       break;
     }
-    if (tau > 0.0) ApplyAffineDrag(w, held, field(), tau);
-    SetDampingReference(w, field());
-    sim.Step();
+    rig.Step();
     ++step;
-    strain = (run.h0 - (w.walls[1].z - z_lo)) / run.h0;
-    pressure = 0.5 * (w.walls[1].reaction.z() - w.walls[0].reaction.z()) / area;
+    strain = rig.Strain();
+    pressure = rig.Pressure();
     if (approaching && pressure >= approach_end) {
       approaching = false;
-      set_platen_velocity(-loading_speed(platen_work()));
+      rig.SetPlatenVelocity(-loading_speed(rig.PlatenWork()));
     }
-    if (sign < 0 && !approaching && -w.walls[1].vz < speed) {
-      const double faster = loading_speed(platen_work());
-      if (faster > -1.01 * w.walls[1].vz) set_platen_velocity(-faster);
+    if (sign < 0 && !approaching && rig.PlatenSpeed() < speed) {
+      const double faster = loading_speed(rig.PlatenWork());
+      if (faster > 1.01 * rig.PlatenSpeed()) rig.SetPlatenVelocity(-faster);
     }
     if (s.feedback_above_window && sign < 0 && !approaching) {
       feedback = feedback || pressure > s.modulus_pressure_hi;
       if (feedback && step % control_every == 0) {
-        const double work = platen_work();
-        const double ratio = work > 0.0 ? FluctuatingKineticEnergy(w, held, field()) / work : 0.0;
+        const double work = rig.PlatenWork();
+        const double ratio = work > 0.0 ? rig.FluctuatingKinetic() / work : 0.0;
         const double gain = ratio > 0.0 ? std::clamp(std::sqrt(allowed / ratio), 0.5, 1.05) : 1.05;
-        const double now = -w.walls[1].vz;
+        const double now = rig.PlatenSpeed();
         const double next = std::min(std::max(now * gain, loading_speed(work)), speed);
-        if (next != now) set_platen_velocity(-next);
+        if (next != now) rig.SetPlatenVelocity(-next);
       }
     }
     if (sign < 0 && pressure > peak) {
@@ -166,21 +112,34 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
       stop = strain <= 0.0 ||
              (pressure <= 0.0 && strain_at_peak - strain > 0.02 * strain_at_peak);
     }
-    if (step % every == 0 || turn || stop) sample();
+    if (step % every == 0 || turn || stop) rig.Sample(sign > 0);
     if (stop) break;
     if (turn) {
       // Back up at the speed it came down with, as the instruments do (KES-FB3): a jump to the
       // full speed after a slow toe would throw the sheet's scaled mass at the platen.
-      set_platen_velocity(-w.walls[1].vz);
+      rig.SetPlatenVelocity(-w.walls[1].vz);
       sign = +1;
     }
     if (progress.report && clock.Seconds() >= next_report) {
-      progress.Say(fmt::format("{}: step {} strain {:.4g} pressure {:.4g} Pa ({})", name, step,
-                               strain, pressure, sign < 0 ? "loading" : "unloading"));
+      progress.Say(fmt::format("{}: step {} strain {:.4g} pressure {:.4g} Pa ({})", rig.name,
+                               step, strain, pressure, sign < 0 ? "loading" : "unloading"));
       next_report = clock.Seconds() + progress.interval_s;
     }
   }
-  run.steps = step;
+  return step;
+}
+
+Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& switches,
+            const std::string& name, const Progress& progress) {
+  const bool stepped = s.loading == CompressionSettings::Loading::kStepped;
+  CompressionRig rig(net, s, switches, name, !stepped);
+  Run run;
+  run.steps = stepped ? LoadStepped(rig, s, progress) : LoadContinuous(rig, s, progress);
+  run.curve = std::move(rig.curve);
+  run.h0 = rig.h0;
+  run.mass_scale = rig.mass_scale;
+  run.dt = rig.dt;
+  run.warnings = std::move(rig.warnings);
   return run;
 }
 
@@ -205,6 +164,9 @@ LoopFigures Analyse(const Curve& c, const CompressionSettings& s, double h0) {
     f.window_hi = f.peak;
   }
   f.modulus = FitSlope(e, p, p, f.window_lo, f.window_hi, 0, peak_row + 1);
+  // Counted from 1% of the window's start on, below which a few fibres decide.
+  f.snap_throughs = CountSnapThroughs(std::vector<double>(p.begin(), p.begin() + turn),
+                                      0.01 * s.modulus_pressure_lo);
   f.energy_in = h0 * Trapezoid(e, p, 0, turn);
   // Unloading runs from the last loading sample on, with decreasing strain.
   const std::size_t unload_begin = turn > 0 ? turn - 1 : 0;
@@ -260,6 +222,9 @@ std::string CompressionSettings::Validate() const {
   if (!(approach_pressure_fraction >= 0.0 && approach_pressure_fraction <= 1.0))
     return fmt::format("approach_pressure_fraction = {}: must lie in [0, 1] of "
                        "modulus_pressure_lo", approach_pressure_fraction);
+  if (settle_max_steps < 0)
+    return fmt::format("settle_max_steps = {}: must be >= 0 (0 = 100 x a move's steps)",
+                       settle_max_steps);
   return ValidateLoading(samples, max_steps, switches, quasi_static);
 }
 
@@ -301,6 +266,7 @@ CompressionResult RunCompressionTest(const Network& net, const CompressionSettin
       {"zd_kinetic_work_ratio", f.guard, "-"},
       {"zd_drag_load_ratio", f.drag_guard, "-"},
       {"zd_mass_scale", base.mass_scale, "-"},
+      {"zd_snap_throughs", static_cast<double>(f.snap_throughs), "-"},
   };
   // The loading branch against the van Wyk form p = k (phi^n - phi0^n): its exponent, and
   // how much of the curve the form explains. A curve that is no power law in phi (a bonded
@@ -338,6 +304,30 @@ CompressionResult RunCompressionTest(const Network& net, const CompressionSettin
     res.curves.push_back(std::move(run.curve));
   }
   return res;
+}
+
+int CountSnapThroughs(const std::vector<double>& loading_pressure, double from_pressure) {
+  int count = 0;
+  double high = 0.0, low = 0.0;
+  bool falling = false;  // one fall lasts until the pressure rises again
+  for (double p : loading_pressure) {
+    if (falling) {
+      if (p <= low) {
+        low = p;
+        continue;
+      }
+      falling = false;
+      high = p;
+    }
+    if (p > high) {
+      high = p;
+    } else if (high > from_pressure && p < 0.9 * high) {
+      ++count;
+      falling = true;
+      low = p;
+    }
+  }
+  return count;
 }
 
 VanWykFit FitVanWyk(const Curve& c, double phi_h0, double p_min_fraction) {

@@ -22,6 +22,8 @@
 //  zd_hysteresis_fraction   (loading work - unloading work) / loading work (1 - KES RC)
 //  zd_residual_strain       strain at which the unloading pressure has fallen to
 //                           residual_pressure_fraction (1%) of the peak
+//  zd_snap_throughs         falls of the loading pressure by more than 10% from its highest
+//                           since the last fall (from 1% of modulus_pressure_lo on)
 //  zd_peak_pressure_kPa, zd_max_strain, zd_kinetic_work_ratio and zd_drag_load_ratio (the
 //  guards, as for the tensile test, over the loading from the window start to the peak;
 //  the kinetic one also over the unloading down to the window start, against the loading
@@ -46,6 +48,19 @@
 namespace fibrenet::pipeline {
 
 struct CompressionSettings {
+  // Continuous: the platen comes down without stopping, at the speeds the keys below set.
+  // Stepped: it comes down by max_strain / samples at the full speed, then stands until the
+  // sheet is at rest (kinetic energy within toe_kinetic_share x kinetic_work_tolerance of the
+  // platen work, or of one move's work at modulus_pressure_lo while the platen has done less;
+  // and the two platens' loads equal within kinetic_work_tolerance of the larger, or of the
+  // load at modulus_pressure_lo), and the curve is sampled there; unloading likewise. Its
+  // curve is a path of rest states: a snap-through of the sheet (the loops of a creped sheet
+  // toppling) settles and is counted (zd_snap_throughs) instead of reading as loading too
+  // fast, and the platen crosses empty space at the full speed. The approach and the
+  // feedback keys act on the continuous loading only.
+  enum class Loading { kContinuous, kStepped };
+  Loading loading = Loading::kContinuous;
+  std::int64_t settle_max_steps = 0;  // stepped: most steps a rest may take (0: 100 x a move's)
   double max_strain = 0.6;        // (0, 0.95]
   double max_pressure = 0.0;      // [Pa]; > 0: stop loading at this pressure (or max_strain)
   double strain_rate = 1.0;       // platen speed / h0 [1/s]
@@ -101,6 +116,10 @@ struct CompressionResult {
 
 CompressionResult RunCompressionTest(const Network& net, const CompressionSettings& s,
                                      const Progress& progress = {});
+
+// Snap-throughs of a loading branch: falls of the pressure by more than 10% from its highest
+// since the last fall, once that highest has passed from_pressure [Pa].
+int CountSnapThroughs(const std::vector<double>& loading_pressure, double from_pressure);
 
 // Fit of the loading branch to the van Wyk form p = k (phi^n - phi0^n), phi the fibre volume
 // fraction (fibre volume / (cell area x gap)). For each n on a fine grid, k and k phi0^n follow

@@ -92,6 +92,21 @@ TEST(SceneFile, BondShareIsPerParticleUnlessTheSceneSaysPerCrossing) {
   EXPECT_NE(msg.find("crossing"), std::string::npos) << msg;
 }
 
+TEST(SceneFile, CompressionLoadsContinuouslyUnlessTheSceneSaysStepped) {
+  const std::string table = std::string(kMinimal) + "[compression]\n";
+  using Loading = pipeline::CompressionSettings::Loading;
+  EXPECT_EQ(ParseScene(table, "c.toml").tests.compression->loading, Loading::kContinuous);
+  const auto stepped =
+      ParseScene(table + "loading = \"stepped\"\nsettle_max_steps = 3000\n", "s.toml");
+  EXPECT_EQ(stepped.tests.compression->loading, Loading::kStepped);
+  EXPECT_EQ(stepped.tests.compression->settle_max_steps, 3000);
+  const std::string msg =
+      InputErrorOf([&] { ParseScene(table + "loading = \"pulsed\"\n", "loading.toml"); });
+  EXPECT_NE(msg.find("loading.toml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("compression.loading"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("stepped"), std::string::npos) << msg;
+}
+
 TEST(SceneFile, DistributionsAreRead) {
   const std::string text = std::string(kMinimal) + R"(
 [fibres.coarseness_mg_per_100m]

@@ -1,14 +1,17 @@
 // ZD compression with unloading: the van Wyk fit gives back the exponent of a curve of its
-// form, and the loading stops at a target pressure. A floating mat (fibres placed at random
-// in a box, no gravity, no bonds) is the cheap specimen of the stop; the van Wyk check on a
-// mat settled under its weight is tests/campaigns/loose_mat_test.cpp.
+// form, the loading stops at a target pressure, the stepped loading follows the slow
+// continuous curve of a buckling column, and snap-throughs are counted. A floating mat (fibres
+// placed at random in a box, no gravity, no bonds) is the cheap specimen of the stop; the van
+// Wyk check on a mat settled under its weight is tests/campaigns/loose_mat_test.cpp.
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include "engine/pipeline/compression_test.h"
 #include "engine/pipeline/forming.h"
+#include "test_fibre.h"
 
 namespace fibrenet::pipeline {
 namespace {
@@ -42,6 +45,90 @@ CompressionSettings MatCompression() {
   s.min_speed_fraction = 1.0;
   s.samples = 200;
   return s;
+}
+
+// A column: one straight fibre of 16 particles standing on the floor, leaning 5 degrees,
+// beside a fibre lying on the floor. Under the platen it buckles; once the chord between its
+// ends leans past the friction angle its ends slip and it falls (a snap-through), and the
+// platen goes on through empty space to the two fibres on the floor.
+Network LeaningColumn() {
+  Network net;
+  World& w = net.world;
+  const double d = 32e-6, lean = 5.0 * kPi / 180.0;
+  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+  w.cell.hi = Vec3(1.2e-3, 1e-3, 2e-3);
+  std::vector<Vec3> column, lying;
+  for (int k = 0; k < 16; ++k) {
+    column.push_back(Vec3(0.6e-3 + k * d * std::sin(lean), 0.5e-3, 0.5 * d + k * d * std::cos(lean)));
+    lying.push_back(Vec3(0.3e-3 + k * d, 0.2e-3, 0.5 * d));
+  }
+  net.AddFibre(TestFibre(16 * d), column, FibreBondOptions{});
+  net.AddFibre(TestFibre(16 * d), lying, FibreBondOptions{});
+  w.contact.restitution = 0.5;
+  w.contact.Derive();
+  w.physics.contacts = true;
+  w.physics.friction = w.contact.mu > 0.0;
+  return net;
+}
+
+// Pressure of the loading branch at `strain`, linearly between the samples.
+double LoadingPressureAt(const Curve& c, double strain) {
+  const std::vector<double> e = c.Values("strain"), p = c.Values("pressure_Pa"),
+                            branch = c.Values("branch");
+  for (std::size_t k = 1; k < e.size() && branch[k] == 0.0; ++k)
+    if (e[k] >= strain) return p[k - 1] + (p[k] - p[k - 1]) * (strain - e[k - 1]) / (e[k] - e[k - 1]);
+  return p.back();
+}
+
+// The stepped loading samples rest states: on the buckling column its curve is the slow
+// continuous one (constant speed, 40x the loading steps, its guard holding) within 3% of the
+// peak at every sample, and its guard holds at a fortieth of the steps, where the continuous
+// loading's does not.
+TEST(ZdCompression, SteppedLoadingFollowsTheSlowContinuousCurve) {
+  CompressionSettings stepped;
+  stepped.max_strain = 0.9;
+  stepped.samples = 100;
+  stepped.quasi_static.loading_steps = 8000;
+  stepped.loading = CompressionSettings::Loading::kStepped;
+  const CompressionResult r = RunCompressionTest(LeaningColumn(), stepped);
+  EXPECT_TRUE(r.quasi_static) << r.Value("zd_kinetic_work_ratio");
+  EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+  EXPECT_NEAR(r.Value("zd_max_strain"), 0.9, 0.01);
+
+  CompressionSettings fast = stepped;
+  fast.loading = CompressionSettings::Loading::kContinuous;
+  fast.min_speed_fraction = 1.0;
+  const CompressionResult f = RunCompressionTest(LeaningColumn(), fast);
+  EXPECT_FALSE(f.quasi_static);
+
+  CompressionSettings slow = fast;
+  slow.quasi_static.loading_steps = 40 * stepped.quasi_static.loading_steps;
+  const CompressionResult q = RunCompressionTest(LeaningColumn(), slow);
+  ASSERT_TRUE(q.quasi_static) << q.Value("zd_kinetic_work_ratio");
+  const double peak = q.Value("zd_peak_pressure_kPa") * 1e3;
+  const Curve& c = r.curves[0];
+  const std::vector<double> e = c.Values("strain"), p = c.Values("pressure_Pa"),
+                            branch = c.Values("branch");
+  int compared = 0;
+  for (std::size_t k = 0; k < e.size() && branch[k] == 0.0; ++k, ++compared)
+    EXPECT_NEAR(p[k], LoadingPressureAt(q.curves[0], e[k]), 0.03 * peak) << "strain " << e[k];
+  EXPECT_GT(compared, 90);
+  // The figures of docs/virtual-tests.md ("Stepped loading").
+  std::printf("column: stepped %lld steps, guard %.4f; continuous %lld steps, guard %.4f; "
+              "slow continuous %lld steps, guard %.4f, peak %.1f kPa\n",
+              static_cast<long long>(r.steps), r.Value("zd_kinetic_work_ratio"),
+              static_cast<long long>(f.steps), f.Value("zd_kinetic_work_ratio"),
+              static_cast<long long>(q.steps), q.Value("zd_kinetic_work_ratio"), peak * 1e-3);
+}
+
+// Falls of the loading pressure by more than 10% from its highest since the last fall count,
+// from the given pressure on; a rise, a plateau and a small dip do not.
+TEST(ZdCompression, CountsSnapThroughs) {
+  EXPECT_EQ(CountSnapThroughs({0, 100, 200, 300, 400}, 5.0), 0);
+  EXPECT_EQ(CountSnapThroughs({0, 100, 200, 195, 200, 300}, 5.0), 0);
+  EXPECT_EQ(CountSnapThroughs({0, 335, 10, 0, 0, 50, 400}, 5.0), 1);
+  EXPECT_EQ(CountSnapThroughs({0, 335, 10, 50, 400, 300, 500}, 5.0), 2);
+  EXPECT_EQ(CountSnapThroughs({0, 4, 1, 4, 1, 100}, 5.0), 0);  // below the floor
 }
 
 // A loading curve of exactly the van Wyk form gives back its exponent, and its r2 is 1.
