@@ -70,9 +70,12 @@ void CompressionRig::Sample(bool unloading) {
 }
 
 void CompressionRig::SetPlatenVelocity(double vz) {
+  if (!affine_) {
+    w.walls[1].vz = vz;
+    return;
+  }
   const AffineField before = Field();
   w.walls[1].vz = vz;
-  if (!affine_) return;
   const AffineField after = Field();
   Particles& p = w.particles;
   for (std::size_t i = 0; i < p.size(); ++i) p.v[i] += after.At(p.x[i]) - before.At(p.x[i]);

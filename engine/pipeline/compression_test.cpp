@@ -117,7 +117,7 @@ std::int64_t LoadContinuous(CompressionRig& rig, const CompressionSettings& s,
     if (turn) {
       // Back up at the speed it came down with, as the instruments do (KES-FB3): a jump to the
       // full speed after a slow toe would throw the sheet's scaled mass at the platen.
-      rig.SetPlatenVelocity(-w.walls[1].vz);
+      rig.SetPlatenVelocity(rig.PlatenSpeed());
       sign = +1;
     }
     if (progress.report && clock.Seconds() >= next_report) {
