@@ -119,6 +119,9 @@ pipeline::SoftnessSettings ReadSoftness(TableReader& r, ReadContext& ctx) {
   b.levels = static_cast<int>(r.Integer("curvature_levels", b.levels, 2, 100));
   b.relax_steps = static_cast<int>(r.Integer("relax_steps", b.relax_steps, 10, 10'000'000));
   b.relax_tolerance = r.Number("relax_tolerance", b.relax_tolerance, Open(0, 1), "");
+  b.relax_time_steps =
+      r.Number("relax_time_steps", b.relax_time_steps, Closed(0, 1e6), "time steps (0 = no drag)");
+  b.local_damping = r.Number("relax_local_damping", b.local_damping, ClosedOpen(0, 1), "(0 = off)");
   pipeline::SoftnessIndexSettings& i = s.index;
   i.w_bulk = r.Number("weight_bulk", i.w_bulk, Closed(0, 5), "");
   i.w_roughness = r.Number("weight_roughness", i.w_roughness, Closed(0, 5), "");

@@ -10,10 +10,17 @@
 // Instead the curvature is raised in `levels` equal increments; at each, every free particle
 // is moved by the increment of the pure-bending field (its reference point (X, Z) mapped onto
 // the arc with plane sections normal to it), the grips are set to the new angle, and the
-// sheet relaxes with viscous damping until the moment is steady (relative change below
-// relax_tolerance over relax_check steps) or relax_steps have run. A homogeneous sheet is
-// already in equilibrium in the field; relaxation only settles the local, non-affine part.
-// The test is static: no viscoelastic rate effect enters it.
+// sheet relaxes until the moment is steady (relative change below relax_tolerance over
+// relax_check steps, twice in a row) or relax_steps have run. A homogeneous sheet is already
+// in equilibrium in the field; relaxation only settles the local, non-affine part. The test
+// is static: no viscoelastic rate effect enters it.
+//
+// Relaxation by local non-viscous damping (test_rig.h) by default: it takes the same share of
+// every mode's energy per cycle, whatever its period. A drag towards rest (relax_time_steps)
+// critically damps one period only: the slow flexural modes of a strip, and the loops of a
+// creped sheet, are overdamped by a drag of 50 steps and creep, so that the moment changes
+// little per check long before it has settled (docs/virtual-tests.md, "Sheet bending:
+// relaxation").
 //
 // Measured: the moment each grip takes about its pivot (forces and torques of its
 // particles), per unit width, m = (M_right - M_left) / (2 W) [N m/m], less its value at zero
@@ -42,10 +49,11 @@ struct BendingSettings {
   double max_curvature = 150.0;   // [1/m], (0, 1e5]
   double fit_from = 1.0 / 3.0;    // fit window start as a fraction of max_curvature, [0, 1)
   int levels = 6;                 // curvature increments, [2, 100]
-  int relax_steps = 3000;         // most steps per level, [10, 1e7]
+  int relax_steps = 100000;       // most steps per level, [10, 1e7]
   int relax_check = 200;          // steps between moment checks, [1, relax_steps]
-  double relax_tolerance = 2e-3;  // relative moment change that counts as settled, (0, 1)
-  double relax_time_steps = 50;   // damping time of the relaxation drag in time steps, > 0
+  double relax_tolerance = 2e-4;  // relative moment change that counts as settled, (0, 1)
+  double local_damping = 0.7;     // local non-viscous damping while relaxing, [0, 1) (0 = off)
+  double relax_time_steps = 0;    // damping time of a drag towards rest in time steps, 0 = none
   double bond_damping_ratio = 0.3;
   double time_step_safety = 0.5;
   MaterialSwitches switches;
