@@ -4,10 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "engine/pipeline/creping.h"
 #include "engine/pipeline/crepe_profile.h"
 #include "engine/pipeline/pipeline.h"
+#include "engine/pipeline/sheet_bending.h"
+#include "engine/pipeline/tensile_test.h"
 #include "tests/engine/pipeline/tiny_spec.h"
 
 namespace fibrenet::pipeline {
@@ -117,6 +120,43 @@ TEST(Creping, StrongerAdhesionBreaksMoreBonds) {
   const Creped a = CrepeSheet(weak), b = CrepeSheet(strong);
   EXPECT_LT(a.result.bonds_broken_fraction, b.result.bonds_broken_fraction);
   EXPECT_LT(a.result.blade_work, b.result.blade_work);
+}
+
+// Creped tissue is weaker, far less stiff and stretchier in MD than the sheet it was creped
+// from (broken bonds, folded fibres to pull straight). The tests hold their quasi-static
+// guards on the creped sheet given enough steps, and its bending relaxes to the moment a long
+// relaxation reaches.
+TEST(Creping, TheCrepedSheetIsWeakerAndStretchierAndItsTestsHoldTheirGuards) {
+  CrepingSettings gentle = Settings();  // at 3 mN the sheet leaves the Yankee mostly whole
+  gentle.adhesion.F_r0 = gentle.adhesion.F_s0 = 3e-3;
+  const Creped creped = CrepeSheet(gentle);
+  TensileSettings t;
+  t.max_strain = 0.15;
+  t.quasi_static.loading_steps = 160000;
+  const TensileResult flat = RunTensileTest(Pressed().network, t);
+  const TensileResult crepe = RunTensileTest(creped.net, t);
+  EXPECT_TRUE(flat.quasi_static) << flat.warnings.front();
+  EXPECT_TRUE(crepe.quasi_static) << crepe.warnings.front();
+  EXPECT_LT(crepe.Value("tensile_strength_N_per_m"), 0.8 * flat.Value("tensile_strength_N_per_m"));
+  EXPECT_LT(crepe.Value("tensile_modulus_N_per_m"), 0.5 * flat.Value("tensile_modulus_N_per_m"));
+  EXPECT_GT(crepe.Value("strain_at_break"), 1.5 * flat.Value("strain_at_break"));
+
+  const BendingResult bent = RunBendingTest(creped.net, BendingSettings{});
+  EXPECT_TRUE(bent.settled) << bent.warnings.front();
+  BendingSettings fine;  // the reference: levels half as large, each relaxed 10x tighter
+  fine.levels = 12;
+  fine.relax_tolerance = 2e-5;
+  fine.relax_steps = 1000000;
+  const BendingResult reference = RunBendingTest(creped.net, fine);
+  const double D = FindMetric(bent.metrics, "bending_stiffness")->value,
+               D_ref = FindMetric(reference.metrics, "bending_stiffness")->value;
+  std::printf("creped: strength %.4g N/m (flat %.4g), modulus %.4g N/m (flat %.4g), strain at "
+              "break %.4g (flat %.4g); bending %.4g mN mm in %ld steps, reference %.4g in %ld\n",
+              crepe.Value("tensile_strength_N_per_m"), flat.Value("tensile_strength_N_per_m"),
+              crepe.Value("tensile_modulus_N_per_m"), flat.Value("tensile_modulus_N_per_m"),
+              crepe.Value("strain_at_break"), flat.Value("strain_at_break"), D,
+              static_cast<long>(bent.steps), D_ref, static_cast<long>(reference.steps));
+  EXPECT_NEAR(D, D_ref, 0.01 * D_ref);
 }
 
 TEST(CrepeProfile, FindsTheFrequencyAndAmplitudeOfASineProfile) {
