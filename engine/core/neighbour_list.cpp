@@ -175,6 +175,34 @@ void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bon
   x_at_build_ = p.x;
   valid_ = true;
   ++builds_;
+  if (parked_) RestoreParked(n);
+}
+
+void NeighbourList::RestoreParked(std::size_t particles) {
+  // Pairs the new rows lack have come apart since (a cut, a removal): their history lapses,
+  // as a rebuild drops it for a pair that left the list.
+  if (particles == parked_particles_)
+    for (const PairHistory& h : parked_history_) {
+      Vec3 xi;
+      if (const std::ptrdiff_t k = EntryOf(h, &xi); k >= 0) history_[k] = xi;
+    }
+  parked_ = false;
+  parked_history_ = {};
+}
+
+NeighbourList NeighbourList::Parked() const {
+  NeighbourList list;
+  list.skin_ = skin_;
+  list.builds_ = builds_;
+  list.parked_ = true;
+  list.parked_history_ = ExportHistory();
+  list.parked_particles_ = parked_ ? parked_particles_ : offsets_.size() - 1;
+  return list;
+}
+
+void NeighbourList::RotateHistory(const Mat3& R) {
+  for (Vec3& h : history_) h = R * h;
+  for (PairHistory& h : parked_history_) h.xi = R * h.xi;
 }
 
 bool NeighbourList::NeedsRebuild(const Particles& p, const Cell& cell) const {
@@ -193,10 +221,12 @@ std::size_t NeighbourList::MemoryBytes() const {
          excl_partners_.capacity() * 4 +
          (cell_of_.capacity() + cell_start_.capacity() + cell_members_.capacity()) * 4 +
          scratch_offsets_.capacity() * 4 + scratch_partners_.capacity() * 4 +
-         scratch_history_.capacity() * sizeof(Vec3);
+         scratch_history_.capacity() * sizeof(Vec3) +
+         parked_history_.capacity() * sizeof(PairHistory);
 }
 
 std::vector<PairHistory> NeighbourList::ExportHistory() const {
+  if (parked_) return parked_history_;
   std::vector<PairHistory> out;
   for (std::size_t i = 0; i + 1 < offsets_.size(); ++i)
     for (std::size_t k = offsets_[i]; k < offsets_[i + 1]; ++k) {
@@ -211,6 +241,18 @@ std::vector<PairHistory> NeighbourList::ExportHistory() const {
   return out;
 }
 
+std::ptrdiff_t NeighbourList::EntryOf(const PairHistory& h, Vec3* xi_in_row) const {
+  const bool in_row_i = RowHolds(h.i, h.j);
+  const std::int32_t owner = in_row_i ? h.i : h.j, partner = in_row_i ? h.j : h.i;
+  const auto first = partners_.begin() + offsets_[owner];
+  const auto last = partners_.begin() + offsets_[owner + 1];
+  const auto it = std::lower_bound(first, last, partner);
+  if (it == last || *it != partner) return -1;
+  // Seen from the other side of the pair, the tangential displacement changes sign.
+  *xi_in_row = owner == h.i ? h.xi : Vec3(-h.xi);
+  return it - partners_.begin();
+}
+
 void NeighbourList::ImportHistory(const std::vector<PairHistory>& history) {
   const auto outside = [&](std::int32_t i) {
     return i < 0 || static_cast<std::size_t>(i) + 1 >= offsets_.size();
@@ -218,15 +260,10 @@ void NeighbourList::ImportHistory(const std::vector<PairHistory>& history) {
   for (const PairHistory& h : history) {
     if (outside(h.i) || outside(h.j) || h.i == h.j)
       throw std::invalid_argument("contact history names a particle outside the list");
-    const bool in_row_i = RowHolds(h.i, h.j);
-    const std::int32_t owner = in_row_i ? h.i : h.j, partner = in_row_i ? h.j : h.i;
-    const auto first = partners_.begin() + offsets_[owner];
-    const auto last = partners_.begin() + offsets_[owner + 1];
-    const auto it = std::lower_bound(first, last, partner);
-    if (it == last || *it != partner)
-      throw std::invalid_argument("contact history names a pair the neighbour list lacks");
-    // Seen from the other side of the pair, the tangential displacement changes sign.
-    history_[it - partners_.begin()] = owner == h.i ? h.xi : Vec3(-h.xi);
+    Vec3 xi;
+    const std::ptrdiff_t k = EntryOf(h, &xi);
+    if (k < 0) throw std::invalid_argument("contact history names a pair the neighbour list lacks");
+    history_[k] = xi;
   }
 }
 

@@ -6,8 +6,11 @@
 // rebuilt when some particle has moved more than half the skin since the last build, so
 // no contact can be missed; the cost of a build is linear in the particle count.
 // Each entry carries the tangential history of its contact, carried over across rebuilds.
+// A parked list (Parked) holds that history alone, without rows, for a world kept aside (a
+// stage's network, an impact frame): the rows are a cache the next build makes again.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -49,17 +52,27 @@ class NeighbourList {
   const Vec3& History(std::size_t k) const { return history_[k]; }
   const std::vector<std::int32_t>& partners() const { return partners_; }
   std::size_t builds() const { return builds_; }
+  bool parked() const { return parked_; }
   double skin() const { return skin_; }
   std::size_t MemoryBytes() const;
 
-  // Histories of all pairs with a non-zero tangential history, in row order.
+  // Histories of all pairs with a non-zero tangential history, in row order (a parked list's
+  // as it was parked).
   std::vector<PairHistory> ExportHistory() const;
   // Restores histories into a freshly built list; a pair that the list lacks is an error
   // (std::invalid_argument), since a touching pair is always within the list's reach.
   void ImportHistory(const std::vector<PairHistory>& history);
+  // Rotates every stored history (a rigid rotation of the world), parked or in rows.
+  void RotateHistory(const Mat3& R);
+  // A list without rows that keeps this one's contact history, skin and build count: its next
+  // build restores the history of the pairs it finds, if the particle count is unchanged.
+  NeighbourList Parked() const;
 
  private:
   void BuildExclusions(std::size_t n, const Bonds& bonds);
+  void RestoreParked(std::size_t particles);
+  // The entry of pair h (-1 if the rows lack it), and h's history as its row stores it.
+  std::ptrdiff_t EntryOf(const PairHistory& h, Vec3* xi_in_row) const;
   bool Excluded(std::int32_t a, std::int32_t b) const;
 
   std::vector<std::uint32_t> offsets_{0};
@@ -78,6 +91,10 @@ class NeighbourList {
   double skin_ = 0.0;
   bool valid_ = false;
   std::size_t builds_ = 0;
+  // A parked list's history, for the particle count it was parked with.
+  bool parked_ = false;
+  std::vector<PairHistory> parked_history_;
+  std::size_t parked_particles_ = 0;
 };
 
 }  // namespace fibrenet

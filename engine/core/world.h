@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "engine/core/blade.h"
@@ -90,5 +91,15 @@ struct World {
   std::int64_t step = 0;
   double min_contact_ratio = 1.0;  // smallest d / (R_i + R_j) reached in a contact
 };
+
+// A copy of the world to keep aside (a stage's network, an impact frame) with its neighbour
+// list parked: the copy costs the particles and bonds, not the list's rows, which its next
+// build makes again. The world itself is left as it was.
+inline World KeptCopy(World& w) {
+  NeighbourList rows = std::exchange(w.neighbours, w.neighbours.Parked());
+  World copy = w;
+  w.neighbours = std::move(rows);
+  return copy;
+}
 
 }  // namespace fibrenet

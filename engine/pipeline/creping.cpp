@@ -369,7 +369,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     out.peak_blade_force = std::max(out.peak_blade_force, w.blades[0].reaction.x() / Ly);
     if (frame_every > 0 && step % frame_every == 0 &&
         static_cast<int>(out.impact_frames.size()) < s.impact_frames)
-      out.impact_frames.push_back(w);
+      out.impact_frames.push_back(KeptCopy(w));
     if (step % every != 0 && step != steps) continue;
     std::size_t past = 0;
     const Blade& bl = w.blades[0];

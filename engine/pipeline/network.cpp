@@ -243,8 +243,7 @@ void TransformRigidly(World& w, const Mat3& R, const Vec3& shift) {
     p.omega[i] = R * p.omega[i];
     p.q[i] = (qR * p.q[i]).normalized();
   }
-  for (std::size_t k = 0; k < w.neighbours.size(); ++k)
-    w.neighbours.History(k) = R * w.neighbours.History(k);
+  w.neighbours.RotateHistory(R);
   for (Wall& wall : w.walls)
     for (Vec3& h : wall.history) h = R * h;
   for (Blade& blade : w.blades)

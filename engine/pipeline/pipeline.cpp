@@ -78,8 +78,10 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
     report.network = start->network;
     progress.Say(fmt::format("starting after {} from an earlier run", report.stages.back().name));
   }
+  // The kept networks park their neighbour lists: a run that keeps every stage holds one
+  // network's rows, not one per stage.
   auto keep = [&] {
-    if (kept) kept->push_back({report.stages, report.network});
+    if (kept) kept->push_back({report.stages, {KeptCopy(report.network.world), report.network.fibres}});
   };
 
   if (done < 1) {
@@ -210,6 +212,8 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
   }
 
   if (spec.tests.Any()) {
+    // The sheet steps no more; each test steps a copy of it with rows of its own.
+    report.network.world.neighbours = report.network.world.neighbours.Parked();
     report.tests = RunVirtualTests(report.network, spec.tests, progress);
     StageReport stage;
     stage.name = "tests";

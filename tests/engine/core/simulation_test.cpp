@@ -169,6 +169,48 @@ TEST(NeighbourList, ContactHistoriesRoundTripFromEitherSide) {
   for (std::size_t k = 0; k < nl.size(); ++k) EXPECT_EQ(other.History(k), nl.History(k));
 }
 
+TEST(NeighbourList, AParkedListKeepsTheHistoryAndItsNextBuildRestoresIt) {
+  std::mt19937 rng(6);
+  World w = RandomWorld(rng, 400, 0.5e-3, 0.1e-3, true);
+  NeighbourList& nl = w.neighbours;
+  nl.Build(w.particles, w.cell, w.bonds, 8e-6);
+  for (std::size_t k = 0; k < nl.size(); k += 3) nl.History(k) = Vec3(1e-9 * double(k + 1), 2e-9, -3e-9);
+  const std::vector<PairHistory> before = nl.ExportHistory();
+  ASSERT_GT(before.size(), 10u);
+
+  // A kept copy holds the history without the rows; the world it came from is untouched.
+  const std::size_t rows_bytes = nl.MemoryBytes();
+  World copy = KeptCopy(w);
+  EXPECT_TRUE(copy.neighbours.parked());
+  EXPECT_EQ(copy.neighbours.size(), 0u);
+  EXPECT_LT(copy.neighbours.MemoryBytes(), rows_bytes / 4);
+  EXPECT_FALSE(nl.parked());
+  EXPECT_EQ(nl.MemoryBytes(), rows_bytes);
+  EXPECT_EQ(nl.ExportHistory().size(), before.size());
+  const std::vector<PairHistory> parked = copy.neighbours.ExportHistory();
+  ASSERT_EQ(parked.size(), before.size());
+
+  // A rigid turn turns the parked history too; the copy's first build restores it.
+  const Mat3 R = Eigen::AngleAxisd(0.3, Vec3::UnitZ()).toRotationMatrix();
+  copy.neighbours.RotateHistory(R);
+  copy.neighbours.Build(copy.particles, copy.cell, copy.bonds, 8e-6);
+  EXPECT_FALSE(copy.neighbours.parked());
+  ASSERT_EQ(copy.neighbours.size(), nl.size());
+  const std::vector<PairHistory> restored = copy.neighbours.ExportHistory();
+  ASSERT_EQ(restored.size(), before.size());
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    EXPECT_EQ(restored[k].i, before[k].i);
+    EXPECT_EQ(restored[k].j, before[k].j);
+    EXPECT_NEAR((restored[k].xi - R * before[k].xi).norm(), 0.0, 1e-24);
+  }
+
+  // With another particle count the indices name other particles: the history lapses.
+  World fewer = KeptCopy(w);
+  fewer.particles.Add(Vec3(0.25e-3, 0.25e-3, 0.05e-3), 5e-6, 1e-12, -1);
+  fewer.neighbours.Build(fewer.particles, fewer.cell, fewer.bonds, 8e-6);
+  EXPECT_TRUE(fewer.neighbours.ExportHistory().empty());
+}
+
 TEST(NeighbourList, IsRebuiltWhenAParticleMovesHalfTheSkin) {
   World w;
   w.cell.lo = Vec3(0.0, 0.0, -1e-3);
