@@ -136,18 +136,44 @@ std::size_t CutAlongX(Network& net, double margin) {
   return cut;
 }
 
-Grips MakeGrips(const World& w, double grip_length) {
+StripEnds FindStripEnds(const World& w) {
+  const Particles& p = w.particles;
+  StripEnds ends{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                 w.cell.Lx()};
+  double r_max = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    ends.lo = std::min(ends.lo, p.x[i].x());
+    ends.hi = std::max(ends.hi, p.x[i].x());
+    r_max = std::max(r_max, p.radius[i]);
+  }
+  if (p.size() == 0 || w.cell.periodic_x) return ends;
+  ends.length = ends.hi - ends.lo;
+  const double bin = 4.0 * r_max;
+  const int bins = static_cast<int>(std::ceil(ends.length / bin));
+  if (bins < 4) return ends;
+  std::vector<double> mass(static_cast<std::size_t>(bins), 0.0);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    mass[std::min(bins - 1, static_cast<int>((p.x[i].x() - ends.lo) / bin))] += p.mass[i];
+  std::vector<double> sorted = mass;
+  std::nth_element(sorted.begin(), sorted.begin() + bins / 2, sorted.end());
+  const double threshold = 0.5 * sorted[bins / 2];
+  int first = 0, last = bins - 1;
+  while (mass[first] < threshold) ++first;
+  while (mass[last] < threshold) --last;
+  const double lo = ends.lo;
+  ends.lo = lo + first * bin;
+  ends.hi = std::min(ends.hi, lo + (last + 1) * bin);
+  ends.length = ends.hi - ends.lo;
+  return ends;
+}
+
+Grips MakeGrips(const World& w, const StripEnds& ends, double grip_length) {
   const Particles& p = w.particles;
   Grips g;
   if (p.size() == 0) return g;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const Vec3& x : p.x) {
-    lo = std::min(lo, x.x());
-    hi = std::max(hi, x.x());
-  }
-  const double cut_left = lo + grip_length, cut_right = hi - grip_length;
-  g.x_left = lo;
-  g.x_right = hi;
+  const double cut_left = ends.lo + grip_length, cut_right = ends.hi - grip_length;
+  g.x_left = -std::numeric_limits<double>::infinity();
+  g.x_right = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double x = p.x[i].x();
     if (x < cut_left) {

@@ -94,15 +94,26 @@ void QuarterTurn(Network& net);
 // `margin` on both sides for the neighbour grid. Returns the number of bonds cut.
 std::size_t CutAlongX(Network& net, double margin);
 
+// Where a strip along x ends, for its grips. A sheet cut from a periodic cell has clean ends:
+// its outermost centres. A sheet that comes to the test already open along x (a creped strip)
+// trails loose fibres and fragments from its cut ends; its ends are where its mass per unit
+// length first reaches half its median (over bins of two particle diameters), so that the
+// clamps close on the whole sheet and the loose ends stick out beyond them, as they would
+// from a tester's clamps. Call it before CutAlongX.
+struct StripEnds {
+  double lo = 0.0, hi = 0.0;  // [m]
+  double length = 0.0;        // the strip's length [m]: the cell's for a periodic sheet
+};
+StripEnds FindStripEnds(const World& w);
 // Particles held by the two grips of a strip along x: the centres within grip_length of
-// either end. A grip's clamp line is its innermost held centre: the free span runs from one
+// either end, and those beyond the ends. A grip's clamp line is its innermost held centre: the free span runs from one
 // clamp line to the other, so a fibre held at both ends has exactly the span free.
 struct Grips {
   std::vector<std::int32_t> left, right;
   double span = 0.0;                   // initial distance between the clamp lines [m]
   double x_left = 0.0, x_right = 0.0;  // clamp lines [m]
 };
-Grips MakeGrips(const World& w, double grip_length);
+Grips MakeGrips(const World& w, const StripEnds& ends, double grip_length);
 // Fixes the grip particles (Particles::Fix: they keep their velocity): left at -V/2, right at
 // +V/2 along x, no spin, and gives the free particles the matching affine velocity so that
 // loading starts without a shock. `sign` = +1 pulls the grips apart, -1 brings them together

@@ -16,11 +16,23 @@
 #include "engine/pipeline/softness.h"
 #include "engine/pipeline/strain_energy.h"
 #include "engine/pipeline/tensile_test.h"
+#include "engine/pipeline/test_rig.h"
 
 namespace fibrenet::pipeline {
 namespace {
 
 constexpr double kD = 20e-6, kE = 10e9, kG = 3e9;
+
+FibreProperties StraightFibre(double length) {
+  FibreProperties f;
+  f.length = length;
+  f.diameter = kD;
+  f.coarseness = 1e-7;
+  f.youngs_modulus = kE;
+  f.shear_modulus = kG;
+  f.strength = 1e9;
+  return f;
+}
 
 // `count` straight fibres of 0.9 Lx along x (or along y when along_y) at z = 0, evenly spaced
 // across; no bonds between them. Particles one diameter apart.
@@ -30,13 +42,7 @@ Network ParallelFibres(int count, bool along_y = false) {
   const double L = 1.0e-3, W = 0.2e-3;
   w.cell.lo = Vec3(0.0, 0.0, -1e-3);
   w.cell.hi = along_y ? Vec3(W, L, 1e-3) : Vec3(L, W, 1e-3);
-  FibreProperties f;
-  f.length = 0.9 * L;
-  f.diameter = kD;
-  f.coarseness = 1e-7;
-  f.youngs_modulus = kE;
-  f.shear_modulus = kG;
-  f.strength = 1e9;
+  const FibreProperties f = StraightFibre(0.9 * L);
   const int n = 45;
   for (int k = 0; k < count; ++k) {
     std::vector<Vec3> x;
@@ -141,6 +147,34 @@ TEST(TensileTest, ParallelFibresGiveTheExactStripStiffness) {
               0.5 * r.Value("tensile_strength_N_per_m") * r.Value("strain_at_break"),
               0.02 * r.Value("tea_J_per_m2"));
   EXPECT_EQ(r.curve.name, "tensile_md");
+}
+
+// A strip that comes open along x (a creped strip) with a loose fibre trailing from one end:
+// the clamps close where the strip is whole, so the loose fibre does not hold the strip.
+TEST(TensileTest, AnOpenStripIsGrippedWhereItIsWholeNotByALooseEnd) {
+  const int n = 4;
+  Network net = ParallelFibres(n);
+  World& w = net.world;
+  w.cell.periodic_x = false;
+  w.cell.hi.x() = 1.6e-3;
+  std::vector<Vec3> loose;
+  for (int m = 0; m < 25; ++m) loose.push_back(Vec3(0.97e-3 + m * kD, 0.5 * w.cell.Ly(), 0.0));
+  net.AddFibre(StraightFibre(25 * kD), loose, FibreBondOptions{});
+  const double first = 0.05e-3 + 0.5 * kD, last = 0.95e-3 - 0.5 * kD;  // the strip's centres
+  const StripEnds ends = FindStripEnds(w);
+  EXPECT_NEAR(ends.lo, first, 1e-12);
+  EXPECT_GE(ends.hi, last);
+  EXPECT_LE(ends.hi, last + 2.0 * kD + 1e-12);  // within one bin of two diameters
+  EXPECT_NEAR(ends.length, ends.hi - ends.lo, 1e-15);
+  // Clamped at its outermost centres, the right grip would hold the loose fibre alone.
+  const TensileResult r = RunTensileTest(net, SmallStrainTensile());
+  const double A = kPi * kD * kD / 4.0, W = w.cell.Ly();
+  EXPECT_NEAR(r.Value("tensile_modulus_N_per_m") / (n * kE * A / W), 1.0, 0.01);
+  // A periodic sheet's ends are its outermost centres and its length the cell's.
+  const StripEnds periodic = FindStripEnds(ParallelFibres(n).world);
+  EXPECT_NEAR(periodic.lo, first, 1e-12);
+  EXPECT_NEAR(periodic.hi, last, 1e-12);
+  EXPECT_EQ(periodic.length, 1e-3);
 }
 
 TEST(TensileTest, CrossDirectionTurnsTheSheet) {
