@@ -23,7 +23,8 @@ bool DownstreamOf(const std::string& path, std::size_t stage) {
 }
 
 std::size_t Bytes(const pipeline::StageState& s) {
-  // Particles carry about 750 bytes each with their neighbour rows and bonds (fibrenet bench).
+  // A bound: about 750 bytes a particle with neighbour rows and bonds (fibrenet bench); kept
+  // states park their lists (NeighbourList::Parked), so they hold less.
   return 1024 + 750 * s.network.world.particles.size();
 }
 
