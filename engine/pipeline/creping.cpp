@@ -14,6 +14,7 @@
 #include "engine/core/parallel.h"
 #include "engine/core/simulation.h"
 #include "engine/pipeline/crepe_profile.h"
+#include "engine/pipeline/reel.h"
 #include "engine/pipeline/test_rig.h"
 
 namespace fibrenet::pipeline {
@@ -151,6 +152,37 @@ void RelaxCrepedSheet(Network& net, const SheetSpec& sheet, const CrepingSetting
     w.particles.v[i].setZero();
     w.particles.omega[i].setZero();
   }
+}
+
+// The rotation that lays the creped sheet along x: rows its MD axis (the principal axis of
+// its mass in the x-z plane, pointing up the face like `face_up`), y, and the normal that
+// makes the rotation proper. A sheet the reel drew up the face lies along the face; one
+// thrown off the Yankee at a tilt is laid along its own length, not foreshortened onto the
+// face's direction.
+Mat3 SheetAxes(const Particles& p, const std::vector<std::size_t>& sheet, const Vec3& face_up) {
+  double m = 0.0, cx = 0.0, cz = 0.0;
+  for (std::size_t i : sheet) {
+    m += p.mass[i];
+    cx += p.mass[i] * p.x[i].x();
+    cz += p.mass[i] * p.x[i].z();
+  }
+  cx /= m;
+  cz /= m;
+  double xx = 0.0, xz = 0.0, zz = 0.0;
+  for (std::size_t i : sheet) {
+    const double dx = p.x[i].x() - cx, dz = p.x[i].z() - cz;
+    xx += p.mass[i] * dx * dx;
+    xz += p.mass[i] * dx * dz;
+    zz += p.mass[i] * dz * dz;
+  }
+  const double angle = 0.5 * std::atan2(2.0 * xz, xx - zz);
+  Vec3 axis(std::cos(angle), 0.0, std::sin(angle));
+  if (axis.dot(face_up) < 0.0) axis = -axis;
+  Mat3 R;
+  R.row(0) = axis.transpose();
+  R.row(1) = Vec3::UnitY().transpose();
+  R.row(2) = Vec3(-axis.z(), 0.0, axis.x()).transpose();
+  return R;
 }
 
 }  // namespace
@@ -309,7 +341,13 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   blade.hard_stiffness = s.blade_hard_stiffness;
   w.blades.push_back(blade);
   const Vec3 face_up = blade.face_up, face_normal = blade.face_normal;
-  const Vec3 v_reel = blade.velocity + s.yankee_speed / (1.0 + s.crepe_ratio) * face_up;
+  Reel reel;
+  reel.velocity = blade.velocity + s.yankee_speed / (1.0 + s.crepe_ratio) * face_up;
+  reel.face_up = face_up;
+  reel.takeaway = takeaway;
+  reel.rate = 1.0 / s.takeaway_time;
+  reel.x_on_yankee.resize(n_sheet);
+  for (std::size_t i = 0; i < n_sheet; ++i) reel.x_on_yankee[i] = p.x[i].x();
 
   UseSheetStepSettings(w, sheet);
   w.neighbours.Invalidate();
@@ -332,10 +370,10 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   out.bond_loss.name = "creping_bond_loss";
   out.bond_loss.columns = {"time_us", "fibre_fibre_broken_fraction",
                            "fibre_fibre_broken_fraction_all", "adhesive_broken_fraction",
-                           "fibre_bonds_broken", "blade_force_N_per_m", "kinetic_J",
-                           "energy_balance_error"};
+                           "fibre_bonds_broken", "blade_force_N_per_m", "reel_force_N_per_m",
+                           "kinetic_J", "energy_balance_error"};
   const std::int64_t n_all = static_cast<std::int64_t>(p.size());
-  const double rate = 1.0 / s.takeaway_time;
+  std::int64_t reel_samples = 0;
   // The adhesive bonds are the ones appended after the sheet's.
   auto adhesive_broken = [&] {
     std::size_t broken = 0;
@@ -358,13 +396,8 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   for (std::int64_t step = 1; step <= steps; ++step) {
     const Vec3 tip = w.blades[0].tip;
 #pragma omp parallel for schedule(static) if (ThreadsPay(p.size()))
-    for (std::int64_t i = 0; i < n_all; ++i) {
-      const Vec3 rel = p.x[i] - tip;
-      const double along = rel.x() * face_up.x() + rel.z() * face_up.z();
-      w.applied_force[i] = along > takeaway && p.inv_mass[i] > 0.0
-                               ? Vec3(-p.mass[i] * rate * (p.v[i] - v_reel))
-                               : Vec3(Vec3::Zero());
-    }
+    for (std::int64_t i = 0; i < n_all; ++i)
+      w.applied_force[i] = reel.Force(p, static_cast<std::size_t>(i), tip);
     sim.Step();
     out.peak_blade_force = std::max(out.peak_blade_force, w.blades[0].reaction.x() / Ly);
     if (frame_every > 0 && step % frame_every == 0 &&
@@ -381,8 +414,18 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
                              ? std::abs(MeasureEnergy(w).Accounted(w.energy) - accounted0) / blade_work
                              : 0.0;
     const double ff = broken_among(fibre_fibre_middle);
+    // The reel's pull on the sheet along the face (negative: it holds back what the blade
+    // threw up faster than the reel runs).
+    double reel = 0.0;
+    for (std::size_t i = 0; i < n_sheet; ++i) reel += w.applied_force[i].dot(face_up);
+    reel /= Ly;
+    if (reel != 0.0) {
+      out.reel_tension += reel;
+      ++reel_samples;
+      out.peak_reel_tension = std::max(out.peak_reel_tension, reel);
+    }
     out.bond_loss.Add({(w.time - t0) * 1e6, ff, broken_among(fibre_fibre), adhesive_broken(),
-                       fibre_broken(), bl.reaction.x() / Ly, KineticEnergy(w), error});
+                       fibre_broken(), bl.reaction.x() / Ly, reel, KineticEnergy(w), error});
     if (progress.report && clock.Seconds() >= next_report) {
       progress.Say(fmt::format("creping: {:.0f}% of the sheet scraped, t = {:.1f} us, fibre-fibre "
                                "bonds broken {:.1f}%",
@@ -391,6 +434,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
       next_report = clock.Seconds() + progress.interval_s;
     }
   }
+  if (reel_samples > 0) out.reel_tension /= static_cast<double>(reel_samples);
   out.steps = steps;
   out.simulated_time = steps * out.dt;
   out.blade_work = w.blades[0].work;
@@ -429,11 +473,8 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   for (std::size_t i = 0; i < n_sheet; ++i)
     if (piece[i] == sheet_piece) creped.push_back(i);
   const std::vector<FramePoint> pts = InFrame(p, creped, tip, face_up, face_normal);
-  double u_max = takeaway, h_min = 1e300;
-  for (const FramePoint& f : pts) {
-    u_max = std::max(u_max, f.x.x());
-    h_min = std::min(h_min, f.x.z() - f.radius);
-  }
+  double u_max = takeaway;
+  for (const FramePoint& f : pts) u_max = std::max(u_max, f.x.x());
   // The first tenth of the creped sheet (its leading end) is left out: it crept before the
   // folding settled into its rhythm.
   const double u_hi = u_max - 0.1 * (u_max - takeaway);
@@ -465,11 +506,10 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   w.applied_force.clear();
   w.applied_torque.clear();
   w.physics.applied_loads = false;
-  Mat3 R;
-  R.row(0) = face_up.transpose();
-  R.row(1) = Vec3::UnitY().transpose();
-  R.row(2) = face_normal.transpose();
-  TransformRigidly(w, R, -(R * tip) - Vec3(0.0, 0.0, h_min));
+  const Mat3 R = SheetAxes(p, creped, face_up);
+  double base = 1e300;
+  for (std::size_t i : creped) base = std::min(base, (R * p.x[i]).z() - p.radius[i]);
+  TransformRigidly(w, R, -Vec3(0.0, 0.0, base));
   double lo = 1e300, hi = -1e300;
   for (std::size_t i : creped) {
     lo = std::min(lo, p.x[i].x() - p.radius[i]);

@@ -17,10 +17,12 @@
 // strength_cv, sampled in 16 equiprobable classes).
 //
 // The reel. The creped sheet is drawn away along the blade face at the reel speed
-// yankee_speed / (1 + crepe_ratio): particles beyond takeaway_height along the face from the
-// tip feel a drag of relaxation time takeaway_time towards that velocity (in the Yankee
-// frame: the blade's velocity plus the reel speed along the face). The drag moves the sheet
-// rigidly and so does not reshape its folds; its work is booked as applied work.
+// yankee_speed / (1 + crepe_ratio): particles the blade has passed (their place on the
+// Yankee is behind the tip) and that lie beyond takeaway_height along the face from the tip
+// feel a drag of relaxation time takeaway_time towards that velocity (in the Yankee frame:
+// the blade's velocity plus the reel speed along the face). The drag moves the drawn sheet
+// rigidly and so does not reshape its folds; its work is booked as applied work. Sheet the
+// blade has not reached, lifted off the Yankee ahead of it, is not drawn.
 //
 // Metrics. The creped sheet (the largest piece held together by intact bonds, beyond the
 // takeaway height) is read in its own frame (u along the face, h normal to it):
@@ -112,6 +114,8 @@ struct CrepingResult {
   double energy_balance_error = 0.0;        // |accounted change| / blade work
   double blade_work = 0.0;                  // [J]
   double peak_blade_force = 0.0;            // [N per m of width]
+  double reel_tension = 0.0;                // the reel's mean pull along the face while it
+  double peak_reel_tension = 0.0;           // draws the sheet, and its peak [N per m of width]
   std::size_t particles_past_blade = 0;     // most free particles behind the face at once
   std::size_t particles_removed = 0;        // dust and pieces left on the Yankee
   double sheet_mass_fraction = 0.0;         // creped sheet mass / sheet mass before
@@ -126,9 +130,10 @@ struct CrepingResult {
 };
 
 // Crepes the sheet; on return `net` holds the creped sheet alone (dust, the pieces left on
-// the Yankee, anchors and blade removed), laid in the sheet frame (x along its MD, z up from
-// its base, open along x, periodic along y) and relaxed at rest on the floor z = 0. Throws
-// RunError when the run goes unstable.
+// the Yankee, anchors and blade removed), laid in the sheet frame (x along its own MD axis,
+// the principal axis of its mass in the x-z plane; z up from its base; open along x,
+// periodic along y) and relaxed at rest on the floor z = 0. Throws RunError when the run
+// goes unstable.
 CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings& s,
                     const MetricsSettings& metrics, std::uint64_t seed, const Progress& progress);
 

