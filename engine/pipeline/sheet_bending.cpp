@@ -90,10 +90,7 @@ BendingResult RunBendingTest(Network net, const BendingSettings& s, const Progre
   z_mid /= static_cast<double>(p.size());
   const StripEnds ends = FindStripEnds(w);
   const double width = w.cell.Ly(), length = ends.length;
-  const double grip = s.grip_length > 0.0 ? s.grip_length : 0.1 * length;
-  if (!(2.0 * grip < 0.8 * length))
-    throw InputError(fmt::format("bending.grip_length = {} m: the grips must leave at least 20% "
-                                 "of the {} m strip free", grip, length));
+  const double grip = GripLength(ends, s.grip_length, "bending.grip_length");
   CutAlongX(net, 0.5 * length);
   const Grips g = MakeGrips(w, ends, grip);
   if (g.left.empty() || g.right.empty()) throw RunError("bending test: a grip holds no particles");

@@ -62,10 +62,7 @@ TensileResult RunTensileTest(Network net, const TensileSettings& s, const Progre
   }
   const StripEnds ends = FindStripEnds(w);
   const double width = w.cell.Ly(), length = ends.length;
-  const double grip = s.grip_length > 0.0 ? s.grip_length : 0.1 * length;
-  if (!(2.0 * grip < 0.8 * length))
-    throw InputError(fmt::format("tensile.grip_length = {} m: the grips must leave at least 20% of "
-                                 "the {} m strip free", grip, length));
+  const double grip = GripLength(ends, s.grip_length, "tensile.grip_length");
   CutAlongX(net, 0.5 * s.max_strain * length + 4.0 * grip);
   const Grips g = MakeGrips(w, ends, grip);
   if (g.left.empty() || g.right.empty() || !(g.span > 0.0))

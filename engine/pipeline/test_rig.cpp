@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/core/error.h"
 #include "engine/core/parallel.h"
 #include "engine/core/time_step.h"
 
@@ -165,6 +166,14 @@ StripEnds FindStripEnds(const World& w) {
   ends.hi = std::min(ends.hi, lo + (last + 1) * bin);
   ends.length = ends.hi - ends.lo;
   return ends;
+}
+
+double GripLength(const StripEnds& ends, double grip_length, const std::string& key) {
+  const double grip = grip_length > 0.0 ? grip_length : 0.1 * ends.length;
+  if (!(2.0 * grip < 0.8 * ends.length))
+    throw InputError(fmt::format("{} = {} m: the grips must leave at least 20% of the {} m strip "
+                                 "free", key, grip, ends.length));
+  return grip;
 }
 
 Grips MakeGrips(const World& w, const StripEnds& ends, double grip_length) {

@@ -105,9 +105,13 @@ struct StripEnds {
   double length = 0.0;        // the strip's length [m]: the cell's for a periodic sheet
 };
 StripEnds FindStripEnds(const World& w);
+// The length of each grip: grip_length, or a tenth of the strip when it is 0. The grips must
+// leave at least 20% of the strip free, else InputError naming the setting `key`.
+double GripLength(const StripEnds& ends, double grip_length, const std::string& key);
 // Particles held by the two grips of a strip along x: the centres within grip_length of
-// either end, and those beyond the ends. A grip's clamp line is its innermost held centre: the free span runs from one
-// clamp line to the other, so a fibre held at both ends has exactly the span free.
+// either end, and those beyond the ends. A grip's clamp line is its innermost held centre:
+// the free span runs from one clamp line to the other, so a fibre held at both ends has
+// exactly the span free.
 struct Grips {
   std::vector<std::int32_t> left, right;
   double span = 0.0;                   // initial distance between the clamp lines [m]
