@@ -34,7 +34,7 @@ CompressionRig::CompressionRig(Network& net, const CompressionSettings& s,
     z_hi = std::max(z_hi, p.x[i].z() + p.radius[i]);
   }
   h0 = z_hi - z_lo;
-  area = w.cell.Lx() * w.cell.Ly();
+  area = SheetArea(w);
   Wall floor;
   floor.z = z_lo;
   floor.side = +1;

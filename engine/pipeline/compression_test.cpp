@@ -19,7 +19,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // One loading-unloading run of a variant.
 struct Run {
   Curve curve;
-  double h0 = 0.0, mass_scale = 1.0, dt = 0.0;
+  double h0 = 0.0, area = 0.0, mass_scale = 1.0, dt = 0.0;
   std::int64_t steps = 0;
   std::vector<std::string> warnings;
 };
@@ -137,6 +137,7 @@ Run RunOnce(Network net, const CompressionSettings& s, const MaterialSwitches& s
   run.steps = stepped ? LoadStepped(rig, s, progress) : LoadContinuous(rig, s, progress);
   run.curve = std::move(rig.curve);
   run.h0 = rig.h0;
+  run.area = rig.area;
   run.mass_scale = rig.mass_scale;
   run.dt = rig.dt;
   run.warnings = std::move(rig.warnings);
@@ -271,7 +272,7 @@ CompressionResult RunCompressionTest(const Network& net, const CompressionSettin
   // The loading branch against the van Wyk form p = k (phi^n - phi0^n): its exponent, and
   // how much of the curve the form explains. A curve that is no power law in phi (a bonded
   // sheet stiff from the first touch) puts n at the fit's lower bound, 1, with a low r2.
-  const VanWykFit wyk = FitVanWyk(base.curve, FibreVolume(net) / (net.Area() * base.h0));
+  const VanWykFit wyk = FitVanWyk(base.curve, FibreVolume(net) / (base.area * base.h0));
   res.metrics.push_back({"zd_van_wyk_exponent", wyk.n, "-"});
   res.metrics.push_back({"zd_van_wyk_r2", wyk.r2, "-"});
   res.curves.push_back(std::move(base.curve));

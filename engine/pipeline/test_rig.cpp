@@ -168,6 +168,16 @@ StripEnds FindStripEnds(const World& w) {
   return ends;
 }
 
+double SheetArea(const World& w) {
+  const Particles& p = w.particles;
+  if (w.cell.periodic_x || p.size() == 0) return w.cell.Lx() * w.cell.Ly();
+  // The ends are particle centres: the strip's footprint reaches a radius beyond each.
+  double diameter = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) diameter += 2.0 * p.radius[i];
+  diameter /= static_cast<double>(p.size());
+  return (FindStripEnds(w).length + diameter) * w.cell.Ly();
+}
+
 double GripLength(const StripEnds& ends, double grip_length, const std::string& key) {
   const double grip = grip_length > 0.0 ? grip_length : 0.1 * ends.length;
   if (!(2.0 * grip < 0.8 * ends.length))

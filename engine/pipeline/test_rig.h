@@ -105,6 +105,10 @@ struct StripEnds {
   double length = 0.0;        // the strip's length [m]: the cell's for a periodic sheet
 };
 StripEnds FindStripEnds(const World& w);
+// The area of the sheet a test loads [m^2]: the cell's for a periodic sheet; for an open
+// strip, its footprint between the ends above (their distance plus a mean particle diameter)
+// times the cell's width, so that neither the cell's margins nor loose ends dilute a pressure.
+double SheetArea(const World& w);
 // The length of each grip: grip_length, or a tenth of the strip when it is 0. The grips must
 // leave at least 20% of the strip free, else InputError naming the setting `key`.
 double GripLength(const StripEnds& ends, double grip_length, const std::string& key);

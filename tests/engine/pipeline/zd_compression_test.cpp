@@ -160,5 +160,46 @@ TEST(ZdCompression, StopsAtTheTargetPressure) {
   EXPECT_LT(r.Value("zd_max_strain"), 0.9);
 }
 
+// A layer of touching spheres in a square grid: 20 fibres of 20 particles along x, side by
+// side along y. Periodic, or the same layer as an open strip in a cell three times its length
+// (a creped strip's case). Squeezed, every sphere carries the same load in both, so the
+// pressure over the strip's footprint is the periodic sheet's; over the open cell's area it
+// would be a third of it.
+Network SphereLayer(bool open) {
+  Network net;
+  World& w = net.world;
+  const int n = 20;
+  const double d = 32e-6, length = n * d;
+  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+  w.cell.hi = Vec3(length, length, 1e-3);
+  if (open) {
+    w.cell.periodic_x = false;
+    w.cell.lo.x() -= length;
+    w.cell.hi.x() += length;
+  }
+  for (int row = 0; row < n; ++row) {
+    std::vector<Vec3> centres;
+    for (int k = 0; k < n; ++k) centres.push_back(Vec3((k + 0.5) * d, (row + 0.5) * d, 0.5 * d));
+    net.AddFibre(TestFibre(length), centres, FibreBondOptions{});
+  }
+  w.contact.restitution = 0.5;
+  w.contact.Derive();
+  return net;
+}
+
+TEST(ZdCompression, AnOpenStripIsLoadedOverItsFootprintNotTheCell) {
+  CompressionSettings s;
+  s.max_strain = 0.05;
+  s.samples = 20;
+  s.quasi_static.loading_steps = 4000;
+  const CompressionResult periodic = RunCompressionTest(SphereLayer(false), s);
+  const CompressionResult open = RunCompressionTest(SphereLayer(true), s);
+  const double p = periodic.Value("zd_peak_pressure_kPa");
+  ASSERT_GT(p, 0.0);
+  EXPECT_NEAR(open.Value("zd_peak_pressure_kPa") / p, 1.0, 1e-6);
+  EXPECT_NEAR(open.Value("zd_compression_energy_J_per_m2") /
+                  periodic.Value("zd_compression_energy_J_per_m2"), 1.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace fibrenet::pipeline
