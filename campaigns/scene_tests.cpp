@@ -117,6 +117,7 @@ pipeline::SoftnessSettings ReadSoftness(TableReader& r, ReadContext& ctx) {
   b.max_curvature = r.Number("max_curvature_per_m", b.max_curvature, OpenClosed(0, 1e5), "1/m");
   b.fit_from = r.Number("fit_from", b.fit_from, ClosedOpen(0, 1), "of max_curvature_per_m");
   b.levels = static_cast<int>(r.Integer("curvature_levels", b.levels, 2, 100));
+  b.ramp_steps = static_cast<int>(r.Integer("curvature_ramp_steps", b.ramp_steps, 0, 10'000'000));
   b.relax_steps = static_cast<int>(r.Integer("relax_steps", b.relax_steps, 10, 10'000'000));
   b.relax_tolerance = r.Number("relax_tolerance", b.relax_tolerance, Open(0, 1), "");
   b.relax_time_steps =

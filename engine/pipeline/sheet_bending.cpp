@@ -13,6 +13,9 @@ namespace fibrenet::pipeline {
 
 namespace {
 
+// Steps between the parts of a ramped curvature increment.
+constexpr int kRampStepsPerPart = 10;
+
 double Sinc(double t) { return std::abs(t) < 1e-4 ? 1.0 - t * t / 6.0 : std::sin(t) / t; }
 
 // The kinematics of pure bending of a strip whose free span S lies between pivots at x_c -+
@@ -57,6 +60,8 @@ std::string BendingSettings::Validate() const {
   if (relax_check < 1 || relax_check > relax_steps)
     return fmt::format("relax_check = {}: must lie in [1, relax_steps = {}]", relax_check,
                        relax_steps);
+  if (ramp_steps < 0 || ramp_steps > 10'000'000)
+    return fmt::format("ramp_steps = {}: must lie in [0, 1e7] (0 = each level at once)", ramp_steps);
   if (!(relax_tolerance > 0.0 && relax_tolerance < 1.0))
     return fmt::format("relax_tolerance = {}: must lie in (0, 1)", relax_tolerance);
   if (!(relax_time_steps >= 0.0 && relax_time_steps <= 1e6))
@@ -140,6 +145,16 @@ BendingResult RunBendingTest(Network net, const BendingSettings& s, const Progre
     moment = 0.5 * (m_side[1] - m_side[0]) / width;
     axial = 0.5 * (f_side[0] - f_side[1]) / width;
   };
+  // One step at fixed grips, with the drag toward rest where there is one.
+  auto step = [&] {
+    if (tau > 0.0)
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (held[i]) continue;
+        w.applied_force[i] = -(p.mass[i] / tau) * p.v[i];
+        w.applied_torque[i] = -(p.inertia[i] / tau) * p.omega[i];
+      }
+    sim.Step();
+  };
   // Relaxes at fixed grips (local damping, or a drag toward rest); returns the steps run and
   // the last relative change of the moment.
   auto relax = [&](double kappa, double& moment, double& axial, double& residual) {
@@ -148,15 +163,7 @@ BendingResult RunBendingTest(Network net, const BendingSettings& s, const Progre
     residual = 1.0;
     int settled_checks = 0;
     while (steps < s.relax_steps) {
-      for (int k = 0; k < s.relax_check && steps < s.relax_steps; ++k, ++steps) {
-        if (tau > 0.0)
-          for (std::size_t i = 0; i < p.size(); ++i) {
-            if (held[i]) continue;
-            w.applied_force[i] = -(p.mass[i] / tau) * p.v[i];
-            w.applied_torque[i] = -(p.inertia[i] / tau) * p.omega[i];
-          }
-        sim.Step();
-      }
+      for (int k = 0; k < s.relax_check && steps < s.relax_steps; ++k, ++steps) step();
       measure(kappa, moment, axial);
       const double scale = std::max(std::abs(moment), std::abs(previous));
       residual = scale > 0.0 ? std::abs(moment - previous) / scale : 0.0;
@@ -175,21 +182,19 @@ BendingResult RunBendingTest(Network net, const BendingSettings& s, const Progre
   res.steps += used;
   res.curve.Add({0.0, 0.0, 0.0, static_cast<double>(used), residual});
   double kappa_old = 0.0;
-  for (int level = 1; level <= s.levels; ++level) {
-    const double kappa = s.max_curvature * level / s.levels;
-    // Move the free particles by the increment of the bending field, the grips exactly.
+  // Moves the free particles by the increment of the bending field from kappa_from to
+  // kappa_to, the grips exactly.
+  auto impose = [&](double kappa_from, double kappa_to) {
     for (std::size_t i = 0; i < p.size(); ++i) {
-      p.v[i].setZero();
-      p.omega[i].setZero();
       if (held[i]) continue;
-      p.x[i] += geo.Bent(ref[i], kappa) - geo.Bent(ref[i], kappa_old);
-      const double turn = geo.Angle(ref[i], kappa) - geo.Angle(ref[i], kappa_old);
+      p.x[i] += geo.Bent(ref[i], kappa_to) - geo.Bent(ref[i], kappa_from);
+      const double turn = geo.Angle(ref[i], kappa_to) - geo.Angle(ref[i], kappa_from);
       p.q[i] = (Quat(Eigen::AngleAxisd(turn, Vec3::UnitY())) * p.q[i]).normalized();
     }
-    const double half = 0.5 * kappa * g.span;
+    const double half = 0.5 * kappa_to * g.span;
     for (int k = 0; k < 2; ++k) {
       const int side = k == 0 ? -1 : 1;
-      const Vec3 pivot0 = geo.Pivot(side, 0.0), pivot = geo.Pivot(side, kappa);
+      const Vec3 pivot0 = geo.Pivot(side, 0.0), pivot = geo.Pivot(side, kappa_to);
       const Quat turn(Eigen::AngleAxisd(side < 0 ? half : -half, Vec3::UnitY()));
       for (const std::int32_t i : (k == 0 ? g.left : g.right)) {
         Vec3 r = ref[i] - pivot0;
@@ -200,6 +205,24 @@ BendingResult RunBendingTest(Network net, const BendingSettings& s, const Progre
         p.q[i] = (turn * q0[i]).normalized();
       }
     }
+  };
+  for (int level = 1; level <= s.levels; ++level) {
+    const double kappa = s.max_curvature * level / s.levels;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      p.v[i].setZero();
+      p.omega[i].setZero();
+    }
+    // A level's increment imposed at once sets the strip ringing, and the overshoot can break
+    // bonds the quasi-static path does not: the ramp imposes it in small parts a few steps
+    // apart.
+    const int parts = std::max(1, s.ramp_steps / kRampStepsPerPart);
+    for (int part = 1; part <= parts; ++part) {
+      const double from = kappa_old + (kappa - kappa_old) * (part - 1) / parts,
+                   to = kappa_old + (kappa - kappa_old) * part / parts;
+      impose(from, to);
+      for (int k = 0; k < (parts > 1 ? kRampStepsPerPart : 0); ++k) step();
+    }
+    res.steps += static_cast<std::int64_t>(parts > 1 ? parts * kRampStepsPerPart : 0);
     double moment = 0.0, axial = 0.0;
     used = relax(kappa, moment, axial, residual);
     res.steps += used;

@@ -49,6 +49,7 @@ struct BendingSettings {
   double max_curvature = 150.0;   // [1/m], (0, 1e5]
   double fit_from = 1.0 / 3.0;    // fit window start as a fraction of max_curvature, [0, 1)
   int levels = 6;                 // curvature increments, [2, 100]
+  int ramp_steps = 2000;          // steps over which a level's increment is imposed, [0, 1e7]
   int relax_steps = 100000;       // most steps per level, [10, 1e7]
   int relax_check = 200;          // steps between moment checks, [1, relax_steps]
   double relax_tolerance = 2e-4;  // relative moment change that counts as settled, (0, 1)
