@@ -42,7 +42,7 @@ EnergyReport MeasureEnergy(const World& w) {
         r.strain.contacts += nr.energy;
         if (friction) {
           const Vec3 xi = nl.History(k);
-          r.strain.contacts += 0.5 * w.contact.tangential_ratio * nr.stiffness * xi.squaredNorm();
+          r.strain.contacts += 0.5 * w.contact.tangential_ratio * nr.law_stiffness * xi.squaredNorm();
         }
       }
     }
@@ -58,7 +58,7 @@ EnergyReport MeasureEnergy(const World& w) {
     const NormalResult nr = EvaluateVanWyk(2.0 * gap, 2.0 * p.radius[i], surface_law.normal);
     r.strain.contacts += 0.5 * nr.energy;
     if (w.physics.friction && friction && i < history.size())
-      r.strain.contacts += 0.5 * w.contact.tangential_ratio * nr.stiffness * history[i].squaredNorm();
+      r.strain.contacts += 0.5 * w.contact.tangential_ratio * nr.law_stiffness * history[i].squaredNorm();
     const double core = hard_gap * p.radius[i] - gap;
     if (core > 0.0) r.strain.contacts += 0.5 * hard_stiffness * core * core;
   };

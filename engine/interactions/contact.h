@@ -10,7 +10,8 @@
 //                case `restitution`, docs/validation-particles.md),
 //   friction     Cundall-Strack: a tangential spring k_tan = tangential_ratio * k(d) on the
 //                accumulated tangential displacement xi (per-contact history, rotated into
-//                the current tangent plane every step), capped by Coulomb mu F_n (slip).
+//                the current tangent plane every step), capped by Coulomb mu F_n (slip);
+//                k(d) is the normal law's stiffness without its hard core.
 // Units: N, m, s. Forces act at the contact point; torques follow from it.
 #pragma once
 
@@ -101,7 +102,7 @@ struct ContactResult {
     const double len_t = xi.norm();
     if (len_t > 0.0) xi *= len / len_t;
     xi += (v_c - v_n * n) * dt;
-    const double k_tan = p.tangential_ratio * nr.stiffness;
+    const double k_tan = p.tangential_ratio * nr.law_stiffness;
     Vec3 f_t = -k_tan * xi;
     const double f_t_mag = f_t.norm();
     const double f_max = p.mu * f_n;

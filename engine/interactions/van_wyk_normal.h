@@ -28,6 +28,10 @@ struct NormalResult {
   double force = 0.0;      // repulsive, >= 0 [N]
   double stiffness = 0.0;  // -dF/dd [N/m]
   double energy = 0.0;     // integral of F from d to R_i + R_j [J]
+  // The law's stiffness without the hard core [N/m]: the friction spring's scale. The core
+  // stands for the collapsed wall in compression; a tangential spring that stiffened 25-fold
+  // as a contact entered it would store (or lose) energy no force did work for.
+  double law_stiffness = 0.0;
 };
 
 inline NormalResult EvaluateVanWyk(double d, double sum_radii, const VanWykParams& p) {
@@ -40,6 +44,7 @@ inline NormalResult EvaluateVanWyk(double d, double sum_radii, const VanWykParam
   r.stiffness = p.C * p.g * ratio_g / d_eval;
   // U(d) = C [ (R (R/d)^(g-1) - R) / (g - 1) - (R - d) ], with R (R/d)^(g-1) = ratio_g d.
   r.energy = p.C * ((ratio_g * d_eval - sum_radii) / (p.g - 1.0) - (sum_radii - d_eval));
+  r.law_stiffness = r.stiffness;
   if (d < d_lin) {
     const double x = d_lin - d;
     const double k = r.stiffness + p.hard_stiffness;

@@ -168,6 +168,32 @@ TEST(Contact, FrictionIsCappedAtMuTimesTheNormalForce) {
   }
 }
 
+// The hard core is the collapsed wall in compression: it stiffens the normal spring, not the
+// friction spring. A friction spring that stiffened 25-fold as a pair entered the core would
+// make the contact's energy jump there, with no force doing work for it.
+TEST(Contact, TheHardCoreStiffensTheNormalSpringNotTheFrictionSpring) {
+  ContactParams soft = Defaults();
+  ContactParams hard = soft;
+  hard.normal.hard_stiffness = 1.5e4;
+  const Vec3 n = Vec3(1.0, 2.0, 2.0) / 3.0;
+  const Vec3 xi0 = 1e-9 * n.cross(Vec3::UnitZ()).normalized();  // stuck: below mu F_n
+  auto at = [&](double ratio, const ContactParams& p) {
+    const double dist = ratio * kSum;
+    const ContactGeometry g{dist * n, dist, kRi, kRj, 3e-12, Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+    Vec3 xi = xi0;
+    return EvaluateContact(g, p, xi, 0.0, true);
+  };
+  const ContactResult s = at(0.3, soft), h = at(0.3, hard);
+  EXPECT_GT(h.normal_force, s.normal_force + 1e4 * 0.2 * kSum);
+  const Vec3 ft_s = s.force_j - s.force_j.dot(n) * n, ft_h = h.force_j - h.force_j.dot(n) * n;
+  ASSERT_GT(ft_s.norm(), 0.0);
+  EXPECT_LT((ft_h - ft_s).norm(), 1e-9 * ft_s.norm());
+  // The energy is continuous across the core's edge (d_lin = 0.5 (R_i + R_j)).
+  const double k_t = hard.tangential_ratio * EvaluateVanWyk(0.5 * kSum, kSum, hard.normal).stiffness;
+  const double friction_energy = 0.5 * k_t * xi0.squaredNorm();
+  EXPECT_NEAR(at(0.5 - 1e-12, hard).energy, at(0.5 + 1e-12, hard).energy, 1e-2 * friction_energy);
+}
+
 TEST(Contact, HistoryIsRotatedIntoTheNewTangentPlaneKeepingItsLength) {
   std::mt19937 rng(4);
   ContactParams p = Defaults();
