@@ -216,13 +216,14 @@ BendingResult RunBendingTest(Network net, const BendingSettings& s, const Progre
     // bonds the quasi-static path does not: the ramp imposes it in small parts a few steps
     // apart.
     const int parts = std::max(1, s.ramp_steps / kRampStepsPerPart);
+    const int steps_per_part = parts > 1 ? kRampStepsPerPart : 0;  // one part: no ramp
     for (int part = 1; part <= parts; ++part) {
       const double from = kappa_old + (kappa - kappa_old) * (part - 1) / parts,
                    to = kappa_old + (kappa - kappa_old) * part / parts;
       impose(from, to);
-      for (int k = 0; k < (parts > 1 ? kRampStepsPerPart : 0); ++k) step();
+      for (int k = 0; k < steps_per_part; ++k) step();
     }
-    res.steps += static_cast<std::int64_t>(parts > 1 ? parts * kRampStepsPerPart : 0);
+    res.steps += static_cast<std::int64_t>(parts) * steps_per_part;
     double moment = 0.0, axial = 0.0;
     used = relax(kappa, moment, axial, residual);
     res.steps += used;
