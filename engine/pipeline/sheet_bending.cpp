@@ -236,8 +236,24 @@ BendingResult RunBendingTest(Network net, const BendingSettings& s, const Progre
 
   const std::vector<double> kappa = res.curve.Values("curvature_per_m"),
                             moment = res.curve.Values("moment_N_m_per_m");
-  const double D = FitSlope(kappa, moment, kappa, s.fit_from * s.max_curvature,
-                            s.max_curvature, 0, kappa.size());
+  // A strip that breaks or buckles at a level sheds moment there. The stiffness is read below
+  // that level, as the tensile and ZD moduli are read below their peaks; a fall within the
+  // relaxation tolerance is the moment's settling noise, not a failure.
+  std::size_t last_rising = 0;
+  while (last_rising + 1 < moment.size() &&
+         moment[last_rising + 1] >= moment[last_rising] * (1.0 - s.relax_tolerance))
+    ++last_rising;
+  double D = FitSlope(kappa, moment, kappa, s.fit_from * s.max_curvature, s.max_curvature, 0,
+                      last_rising + 1);
+  if (last_rising + 1 < moment.size()) {
+    const bool from_zero = std::isnan(D);  // fewer than two levels in the window
+    if (from_zero) D = FitSlope(kappa, moment, kappa, 0.0, s.max_curvature, 0, last_rising + 1);
+    res.warnings.push_back(fmt::format(
+        "bending: the moment fell from {:.4g} to {:.4g} N m/m between curvatures {:.4g} and {:.4g} "
+        "1/m (bonds broke or the strip buckled); the stiffness is fitted below {:.4g} 1/m{}",
+        moment[last_rising], moment[last_rising + 1], kappa[last_rising], kappa[last_rising + 1],
+        kappa[last_rising + 1], from_zero ? ", from zero curvature" : ""));
+  }
   res.settled = worst <= s.relax_tolerance;
   if (!res.settled)
     res.warnings.push_back(fmt::format(

@@ -231,5 +231,24 @@ TEST(BendingTest, ParallelFibresGiveTheBeamStiffness) {
   EXPECT_LT(std::abs(axial.back()), 1e-5 * scale);
 }
 
+// Fibres whose bonds break in bending between the last two levels shed the moment there: the
+// stiffness is read below that level, still the beams' n E I / W, and the warning names it.
+TEST(BendingTest, AStripThatBreaksIsReadBelowTheLevelWhereItBroke) {
+  const int n = 5;
+  Network net = ParallelFibres(n);
+  const double I = kPi * std::pow(kD, 4) / 64.0;
+  const BendingSettings s;
+  const double breaking_curvature = 0.9 * s.max_curvature;  // between levels 5 and 6 of 6
+  for (BeamBondParams& t : net.world.bonds.types) t.max_bending = kE * I * breaking_curvature;
+  const BendingResult r = RunBendingTest(net, s);
+  const std::vector<double> moment = r.curve.Values("moment_N_m_per_m");
+  ASSERT_LT(moment.back(), 0.5 * moment[moment.size() - 2]) << "the bonds broke at the last level";
+  const double expected_mN_mm = n * kE * I / net.world.cell.Ly() * 1e6;
+  EXPECT_NEAR(FindMetric(r.metrics, "bending_stiffness")->value / expected_mN_mm, 1.0, 0.03);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("the moment fell"), std::string::npos) << r.warnings.back();
+  EXPECT_NE(r.warnings.back().find("fitted below 150 1/m"), std::string::npos) << r.warnings.back();
+}
+
 }  // namespace
 }  // namespace fibrenet::pipeline
