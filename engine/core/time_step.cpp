@@ -41,8 +41,10 @@ TimeStepInfo CriticalTimeStep(const World& w) {
     const VanWykParams& vw = w.contact.normal;
     double r_min = p.size() ? *std::min_element(p.radius.begin(), p.radius.end()) : 1.0;
     const double d_lin = vw.linear_below * 2.0 * r_min;
-    k_contact = vw.C * vw.g * std::pow(1.0 / vw.linear_below, vw.g) / d_lin + vw.hard_stiffness;
-    if (w.physics.friction) k_contact *= (1.0 + w.contact.tangential_ratio);
+    const double k_law = vw.C * vw.g * std::pow(1.0 / vw.linear_below, vw.g) / d_lin;
+    // The friction spring follows the law's stiffness, not the hard core's (contact.h).
+    const double friction_share = w.physics.friction ? w.contact.tangential_ratio : 0.0;
+    k_contact = k_law * (1.0 + friction_share) + vw.hard_stiffness;
   }
   // Hard cores of rigid surfaces, as if a particle touched them all at once.
   double k_surfaces = 0.0;

@@ -337,6 +337,12 @@ TEST(TimeStep, HardCoresOfContactsAndSurfacesShortenTheStep) {
   w.walls.push_back(wall);
   const double with_wall = CriticalTimeStep(w).dt_crit;
   EXPECT_NEAR(with_wall, expected(k_cap + 1.5e4, 3e4), 1e-12 * with_wall);
+  // Friction adds the tangential spring at the law's stiffness only: the core stiffens the
+  // normal spring alone.
+  w.physics.friction = true;
+  w.contact.tangential_ratio = 0.8;
+  const double with_friction = CriticalTimeStep(w).dt_crit;
+  EXPECT_NEAR(with_friction, expected(1.8 * k_cap + 1.5e4, 3e4), 1e-12 * with_friction);
 }
 
 void ExpectRunErrorNaming(Simulation& sim, std::int64_t step, std::size_t particle) {
