@@ -109,7 +109,10 @@ struct ContactResult {
     if (f_t_mag > f_max) {
       const Vec3 f_slip = f_t * (f_max / f_t_mag);
       const Vec3 xi_new = -f_slip / k_tan;
-      r.slip_loss = f_max * (xi - xi_new).norm();
+      // The slip releases the spring energy above the cap. f_max |dxi| would book less where
+      // the cap falls by more than the step's slip (a pair leaving the hard core), and the
+      // energy would leave the ledger unaccounted.
+      r.slip_loss = 0.5 * k_tan * (xi.squaredNorm() - xi_new.squaredNorm());
       xi = xi_new;
       f_t = f_slip;
     }

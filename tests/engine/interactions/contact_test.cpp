@@ -194,6 +194,25 @@ TEST(Contact, TheHardCoreStiffensTheNormalSpringNotTheFrictionSpring) {
   EXPECT_NEAR(at(0.5 - 1e-12, hard).energy, at(0.5 + 1e-12, hard).energy, 1e-2 * friction_energy);
 }
 
+// A slip books exactly the friction spring's energy it releases, however far the history
+// stood beyond the cap (as where the normal force falls at once): the contact's energy
+// before equals its energy after plus the loss.
+TEST(Contact, SlipBooksTheFrictionSpringEnergyItReleases) {
+  std::mt19937 rng(5);
+  const ContactParams p = Defaults(0.8);
+  for (const double beyond : {1.001, 2.0, 100.0}) {
+    const ContactGeometry g{0.9 * kSum * Vec3::UnitX(), 0.9 * kSum, kRi, kRj, 3e-12,
+                            Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+    const NormalResult nr = EvaluateVanWyk(g.dist, kSum, p.normal);
+    const double k_t = p.tangential_ratio * nr.law_stiffness;
+    Vec3 xi = (beyond * p.mu * nr.force / k_t) * RandomUnit(rng).cross(Vec3::UnitX()).normalized();
+    const double before = nr.energy + 0.5 * k_t * xi.squaredNorm();
+    const ContactResult r = EvaluateContact(g, p, xi, 0.0, true);  // no motion: dt = 0
+    EXPECT_GT(r.slip_loss, 0.0);
+    EXPECT_NEAR(r.energy + r.slip_loss, before, 1e-12 * before) << "history at " << beyond << " x the cap";
+  }
+}
+
 TEST(Contact, HistoryIsRotatedIntoTheNewTangentPlaneKeepingItsLength) {
   std::mt19937 rng(4);
   ContactParams p = Defaults();
