@@ -201,8 +201,9 @@ void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses
         // Apart: the next touch starts afresh. Writing only when needed keeps the cache
         // lines of the many pairs already clear clean.
         Vec3& xi = nl.History(k);
-        const bool held = (xi.x() != 0.0) | (xi.y() != 0.0) | (xi.z() != 0.0);
-        if ((!touch) & held) xi.setZero();
+        const int held = static_cast<int>(xi.x() != 0.0) | static_cast<int>(xi.y() != 0.0) |
+                         static_cast<int>(xi.z() != 0.0);
+        if (static_cast<int>(!touch) & held) xi.setZero();
       }
       for (std::size_t c = 0; c < count; ++c) {
         const std::size_t k = block + touching[c];
