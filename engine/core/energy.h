@@ -17,9 +17,11 @@ struct EnergyReport {
   double kinetic_rotation = 0.0;
   StrainEnergy strain;
   double Kinetic() const { return kinetic_translation + kinetic_rotation; }
-  // kinetic + strain + dissipated + released - work: constant in an accounted run.
+  // kinetic + strain + dissipated + released - work - regained overlap: constant in an
+  // accounted run.
   double Accounted(const EnergyLedger& ledger) const {
-    return Kinetic() + strain.Total() + ledger.Dissipated() + ledger.released - ledger.Work();
+    return Kinetic() + strain.Total() + ledger.Dissipated() + ledger.released - ledger.Work() -
+           ledger.overlap_regained;
   }
 };
 

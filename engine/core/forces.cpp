@@ -73,6 +73,14 @@ void GatherBondLanes(const World& w, const std::vector<BondLanesType>& types,
   GatherVec3Lanes(omega_j, in.omega_j);
 }
 
+// The normal law's energy of particles i and j, d = x_j - x_i apart; 0 when apart. Their
+// friction history starts empty, so the tangential spring holds nothing.
+double OverlapEnergy(const World& w, std::int32_t i, std::int32_t j, const Vec3& d) {
+  const double sum_radii = w.particles.radius[i] + w.particles.radius[j];
+  const double dist = d.norm();
+  return dist < sum_radii ? EvaluateVanWyk(dist, sum_radii, w.contact.normal).energy : 0.0;
+}
+
 }  // namespace
 
 void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
@@ -84,9 +92,9 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
   std::vector<BondLanesType> lanes_types(bonds.types.size());
   for (std::size_t t = 0; t < bonds.types.size(); ++t)
     lanes_types[t] = LanesTypeOf(bonds.types[t], dt);
-  double inelastic = 0.0, released = 0.0;
+  double inelastic = 0.0, released = 0.0, regained = 0.0;
   int broke = 0;
-#pragma omp parallel reduction(+ : inelastic, released) reduction(| : broke)
+#pragma omp parallel reduction(+ : inelastic, released, regained) reduction(| : broke)
   for (int range = ThreadId(); range < buffers.Ranges(); range += TeamSize()) {
     ForceBuffers::Writer out = buffers.WriterFor(range);
     // Plain names, not a structured binding: the lambda below captures them. The range's
@@ -139,6 +147,9 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
       if (r.broken) {
         bonds.broken[b] = 1;
         released += r.Energy();
+        // The pair meets as a contact from the next neighbour build on (the list leaves out
+        // bonded pairs only); an overlap the bond held comes back as that contact's energy.
+        if (w.physics.contacts) regained += OverlapEnergy(w, i, j, g.d);
         broke = 1;
         BondBreakEvent e;
         e.step = w.step;
@@ -166,6 +177,7 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
   }
   losses.bond_inelastic += inelastic;
   losses.released += released;
+  losses.overlap_regained += regained;
   losses.bonds_broke = losses.bonds_broke || broke;
 }
 

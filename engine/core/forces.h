@@ -12,6 +12,7 @@ struct StepLosses {
   double friction = 0.0;        // [J]
   double bond_inelastic = 0.0;  // [J]
   double released = 0.0;        // [J]
+  double overlap_regained = 0.0;  // [J]
   double min_contact_ratio = 1.0;
   bool bonds_broke = false;
 };

@@ -84,11 +84,20 @@ void Simulation::Step() {
   e.friction += losses_.friction;
   e.bond_inelastic += losses_.bond_inelastic;
   e.released += losses_.released;
+  e.overlap_regained += losses_.overlap_regained;
   e.work_walls += wall_work;
   for (Wall& wall : w_.walls) wall.z += wall.vz * w_.settings.dt;
   for (Blade& blade : w_.blades) blade.tip += blade.velocity * w_.settings.dt;
   w_.min_contact_ratio = std::min(w_.min_contact_ratio, losses_.min_contact_ratio);
-  if (losses_.bonds_broke) w_.neighbours.Invalidate();
+  // The pair of a broken bond meets as a contact from now on. With contacts the list is
+  // built at once (the next step would build it at these same positions), so that energy
+  // measured between steps sees the contact whose overlap the ledger booked.
+  if (losses_.bonds_broke) {
+    if (contacts)
+      w_.neighbours.Build(p, w_.cell, w_.bonds, w_.settings.skin);
+    else
+      w_.neighbours.Invalidate();
+  }
   w_.time += w_.settings.dt;
   ++w_.step;
 }

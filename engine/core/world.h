@@ -60,6 +60,10 @@ struct EnergyLedger {
   double friction = 0.0;        // Coulomb slip (contacts and walls)
   double bond_inelastic = 0.0;  // bond dashpots, Maxwell flow, plastic bending
   double released = 0.0;        // strain energy of bonds at the step they broke
+  // Contact energy of the overlap a broken bond held: a bond formed on a pressed pair keeps
+  // its particles overlapping, and once it breaks they meet as a contact again, whose
+  // compression pushes them apart with energy the bond stored when it formed.
+  double overlap_regained = 0.0;
   double work_gravity = 0.0;
   double work_drag = 0.0;       // negative when drag takes energy out
   double work_walls = 0.0;

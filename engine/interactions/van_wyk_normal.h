@@ -40,7 +40,7 @@ inline NormalResult EvaluateVanWyk(double d, double sum_radii, const VanWykParam
   const double d_lin = p.linear_below * sum_radii;
   const double d_eval = d > d_lin ? d : d_lin;
   const double ratio_g = std::pow(sum_radii / d_eval, p.g);
-    r.force = p.C * (ratio_g - 1.0);
+  r.force = p.C * (ratio_g - 1.0);
   r.stiffness = p.C * p.g * ratio_g / d_eval;
   // U(d) = C [ (R (R/d)^(g-1) - R) / (g - 1) - (R - d) ], with R (R/d)^(g-1) = ratio_g d.
   r.energy = p.C * ((ratio_g * d_eval - sum_radii) / (p.g - 1.0) - (sum_radii - d_eval));

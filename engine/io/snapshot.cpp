@@ -108,6 +108,7 @@ void WriteScalars(Hdf5File& f, const World& w) {
   f.WriteAttribute("energy_friction", e.friction);
   f.WriteAttribute("energy_bond_inelastic", e.bond_inelastic);
   f.WriteAttribute("energy_released", e.released);
+  f.WriteAttribute("energy_overlap_regained", e.overlap_regained);
   f.WriteAttribute("work_gravity", e.work_gravity);
   f.WriteAttribute("work_drag", e.work_drag);
   f.WriteAttribute("work_walls", e.work_walls);
@@ -157,6 +158,9 @@ void ReadScalars(const Hdf5File& f, World& w) {
   e.friction = f.ReadAttribute("energy_friction");
   e.bond_inelastic = f.ReadAttribute("energy_bond_inelastic");
   e.released = f.ReadAttribute("energy_released");
+  // Snapshots written before the ledger had the term carry none.
+  e.overlap_regained =
+      f.HasAttribute("energy_overlap_regained") ? f.ReadAttribute("energy_overlap_regained") : 0.0;
   e.work_gravity = f.ReadAttribute("work_gravity");
   e.work_drag = f.ReadAttribute("work_drag");
   e.work_walls = f.ReadAttribute("work_walls");

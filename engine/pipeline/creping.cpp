@@ -362,6 +362,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
                                  steps, out.dt, (x1 - x0) * 1e3, steps));
 
   const double accounted0 = MeasureEnergy(w).Accounted(w.energy);
+  const double regained0 = w.energy.overlap_regained;
   w.min_contact_ratio = 1.0;  // report the impact's own closest approach
   const double t0 = w.time;
   const std::int64_t every = std::max<std::int64_t>(1, steps / s.curve_samples);
@@ -438,6 +439,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   out.steps = steps;
   out.simulated_time = steps * out.dt;
   out.blade_work = w.blades[0].work;
+  out.overlap_regained = w.energy.overlap_regained - regained0;
   out.energy_balance_error = out.bond_loss.rows.back().back();
   out.bonds_broken_fraction = broken_among(fibre_fibre_middle);
   out.bonds_broken_fraction_all = broken_among(fibre_fibre);

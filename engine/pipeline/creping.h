@@ -113,6 +113,9 @@ struct CrepingResult {
   double dust_mass_fraction = 0.0;
   double energy_balance_error = 0.0;        // |accounted change| / blade work
   double blade_work = 0.0;                  // [J]
+  // Contact energy the pairs of broken bonds regained: the overlap the bonds held since
+  // pressing (EnergyLedger::overlap_regained) [J]
+  double overlap_regained = 0.0;
   double peak_blade_force = 0.0;            // [N per m of width]
   double reel_tension = 0.0;                // the reel's mean pull along the face while it
   double peak_reel_tension = 0.0;           // draws the sheet, and its peak [N per m of width]

@@ -97,6 +97,9 @@ TEST(Snapshot, RoundTripKeepsEveryField) {
   const std::string text((std::istreambuf_iterator<char>(xdmf)), {});
   EXPECT_NE(text.find("fields/strain_energy"), std::string::npos);
   EXPECT_NE(text.find("Polyline"), std::string::npos);
+  w.energy.overlap_regained = 2.5e-9;  // the ledger's newest term
+  io::WriteSnapshot(w, path);
+  EXPECT_EQ(io::ReadSnapshot(path).energy.overlap_regained, 2.5e-9);
 }
 
 TEST(Snapshot, ContinuingFromASnapshotMatchesAnUninterruptedRun) {
