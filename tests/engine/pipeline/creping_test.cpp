@@ -79,6 +79,8 @@ void ExpectSound(const Creped& c, double mass_before) {
   EXPECT_GT(r.adhesive_broken_fraction, 0.95) << "the sheet must leave the Yankee";
   EXPECT_GT(r.bonds_broken_fraction, 0.0);
   EXPECT_LT(r.bonds_broken_fraction, 1.0);
+  // Pressed pairs whose bonds broke meet as contacts again, and the ledger books their overlap.
+  EXPECT_GT(r.overlap_regained, 0.0);
   EXPECT_EQ(c.net.CheckInvariants(), "");
   // Only the creped sheet is left: anchors, dust and the pieces left on the Yankee removed.
   EXPECT_NEAR(c.net.TotalMass(), r.sheet_mass_fraction * mass_before, 1e-12 * mass_before);
