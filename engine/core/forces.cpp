@@ -147,8 +147,8 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
       if (r.broken) {
         bonds.broken[b] = 1;
         released += r.Energy();
-        // The pair meets as a contact from the next neighbour build on (the list leaves out
-        // bonded pairs only); an overlap the bond held comes back as that contact's energy.
+        // The pair meets as a contact once the list is built again, at the end of this step
+        // (it leaves out bonded pairs only): an overlap the bond held comes back as energy.
         if (w.physics.contacts) regained += OverlapEnergy(w, i, j, g.d);
         broke = 1;
         BondBreakEvent e;
