@@ -71,6 +71,25 @@ campaigns::StageSnapshot LoadStart(const std::string& path, const pipeline::Pipe
   return start;
 }
 
+// With --from, the snapshot's stages are kept as they are: an override of a table they were
+// made from would change nothing, so it is refused rather than ignored. [contact], [fibres]
+// and [cell] went into the network at forming.
+void RefuseOverridesOfKeptStages(const std::vector<campaigns::Override>& overrides,
+                                 const std::string& from, const std::string& last) {
+  std::vector<std::string> kept = {"cell", "fibres", "contact", "forming"};
+  if (last != "forming") kept.insert(kept.end(), {"pressing", "through_air"});
+  if (last == "creping") kept.push_back("creping");
+  for (const campaigns::Override& o : overrides) {
+    const std::string table = o.path.substr(0, o.path.find('.'));
+    if (std::find(kept.begin(), kept.end(), table) != kept.end())
+      throw InputError(fmt::format(
+          "--set {}: {} holds the network after {}, made with its own [{}], so the override would "
+          "change nothing; accepted with this snapshot: keys of the stages after {}, or a run "
+          "from an earlier snapshot",
+          o.path, from, last, table, last));
+  }
+}
+
 // The scene cut after the stage `until` names: the stages before it are the scene's own, so
 // their snapshots are the ones a whole run writes.
 void StopAfter(pipeline::PipelineSpec& spec, const std::string& until, const std::string& scene) {
@@ -100,7 +119,10 @@ int Run(const RunOptions& o) {
     identity += fmt::format("\n{} = {:.17g}", v.path, v.value);
   const campaigns::SnapshotOrigin origin{o.scene, campaigns::HashText(identity), spec.seed};
   std::optional<campaigns::StageSnapshot> start;
-  if (!o.from.empty()) start = LoadStart(o.from, spec, origin);
+  if (!o.from.empty()) {
+    start = LoadStart(o.from, spec, origin);
+    RefuseOverridesOfKeptStages(overrides, o.from, start->state.stages.back().name);
+  }
   if (o.threads > 0) SetThreadCount(o.threads);
 
   pipeline::Progress progress;

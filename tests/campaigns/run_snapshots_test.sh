@@ -93,6 +93,12 @@ PY
 expect_exit 2 "full/snapshots/pressing.h5: holds the network after pressing" \
   "$fibrenet" run unpressed.toml --from full/snapshots/pressing.h5
 
+# An override of a table the snapshot's stages were made from would change nothing: refused.
+expect_exit 2 "--set contact.friction_mu: full/snapshots/pressing.h5 holds the network after pressing" \
+  "$fibrenet" run scene.toml --from full/snapshots/pressing.h5 --set contact.friction_mu=0
+expect_exit 2 "--set pressing.speed_m_per_s: full/snapshots/pressing.h5 holds the network after pressing" \
+  "$fibrenet" run scene.toml --from full/snapshots/pressing.h5 --set pressing.speed_m_per_s=1
+
 # A file that is not a snapshot.
 echo "not hdf5" > bogus.h5
 expect_exit 2 "bogus.h5: not an HDF5 file" "$fibrenet" run scene.toml --from bogus.h5
