@@ -71,17 +71,18 @@ campaigns::StageSnapshot LoadStart(const std::string& path, const pipeline::Pipe
   return start;
 }
 
-// With --from, the snapshot's stages are kept as they are: an override of a table they were
-// made from would change nothing, so it is refused rather than ignored. [contact], [fibres]
-// and [cell] went into the network at forming.
+// With --from, the snapshot's stages are kept as they are: an override of a table only they
+// read would change nothing, so it is refused rather than ignored.
 void RefuseOverridesOfKeptStages(const std::vector<campaigns::Override>& overrides,
                                  const std::string& from, const std::string& last) {
-  std::vector<std::string> kept = {"cell", "fibres", "contact", "forming"};
-  if (last != "forming") kept.insert(kept.end(), {"pressing", "through_air"});
-  if (last == "creping") kept.push_back("creping");
+  using campaigns::KeyStage;
+  const KeyStage kept = last == "forming"   ? KeyStage::kForming
+                        : last == "creping" ? KeyStage::kCreping
+                                            : KeyStage::kConsolidation;
   for (const campaigns::Override& o : overrides) {
+    const KeyStage fed = campaigns::StageOfKey(o.path);
     const std::string table = o.path.substr(0, o.path.find('.'));
-    if (std::find(kept.begin(), kept.end(), table) != kept.end())
+    if (fed != KeyStage::kEvery && static_cast<int>(fed) <= static_cast<int>(kept))
       throw InputError(fmt::format(
           "--set {}: {} holds the network after {}, made with its own [{}], so the override would "
           "change nothing; accepted with this snapshot: keys of the stages after {}, or a run "

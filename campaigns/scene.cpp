@@ -414,6 +414,16 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
 
 }  // namespace
 
+KeyStage StageOfKey(const std::string& path) {
+  const std::string table = path.substr(0, path.find('.'));
+  if (table == "cell" || table == "fibres" || table == "contact" || table == "forming")
+    return KeyStage::kForming;
+  if (table == "pressing" || table == "through_air") return KeyStage::kConsolidation;
+  if (table == "creping") return KeyStage::kCreping;
+  if (table == "tensile" || table == "compression" || table == "softness") return KeyStage::kTests;
+  return KeyStage::kEvery;
+}
+
 Override ParseOverride(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos)

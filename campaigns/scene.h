@@ -28,6 +28,12 @@ struct Override {
 // Parses "path=value" (as given on a command line).
 Override ParseOverride(const std::string& text);
 
+// The stage a key's table feeds, in pipeline order: [cell], [fibres], [contact] and
+// [forming] go into the network at forming; [fidelity], [metrics] and top-level keys feed
+// every stage. The stage cache and `run --from` both go by it.
+enum class KeyStage { kEvery = -1, kForming, kConsolidation, kCreping, kTests };
+KeyStage StageOfKey(const std::string& path);
+
 pipeline::PipelineSpec LoadScene(const std::string& path, const std::vector<Override>& overrides = {});
 
 // The text of a scene file (InputError naming the file when it cannot be read).

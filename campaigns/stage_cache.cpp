@@ -15,11 +15,8 @@ namespace {
 
 // Overrides of the tables downstream of each network stage (they do not change it).
 bool DownstreamOf(const std::string& path, std::size_t stage) {
-  auto in = [&](const char* table) { return path.rfind(std::string(table) + ".", 0) == 0; };
-  const bool tests = in("tensile") || in("compression") || in("softness");
-  if (stage == 0) return tests || in("pressing") || in("through_air") || in("creping");
-  if (stage == 1) return tests || in("creping");
-  return tests;
+  const KeyStage fed = StageOfKey(path);
+  return fed != KeyStage::kEvery && static_cast<int>(fed) > static_cast<int>(stage);
 }
 
 std::size_t Bytes(const pipeline::StageState& s) {
