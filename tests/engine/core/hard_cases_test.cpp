@@ -5,8 +5,9 @@
 // regained overlap), which an exact integration would keep constant. It is followed here in
 // its leapfrog form: the kinetic energy is taken as 1/2 m v_(n-1/2) . v_(n+1/2) with the
 // strain energy at x_n, which removes the O(omega dt) offset of the energy at the end of a
-// step (velocities live half a step from positions) and leaves O((omega dt)^2). Its largest deviation from the
-// start, relative to the energy scale of the case, must stay within a few percent.
+// step (velocities live half a step from positions) and leaves O((omega dt)^2). Its largest
+// deviation from the start, relative to the energy scale of the case, must stay within a few
+// percent.
 #include <cmath>
 #include <random>
 #include <string>
