@@ -30,6 +30,7 @@ struct BenchCliOptions {
   int threads = 0;
   bool no_friction = false, no_contacts = false, no_gravity = false;
   bool drag = false, viscoelastic = false;
+  bool shuffled = false;
   bool scaling = false;
   unsigned long long seed = 1;
   std::string write_bed;  // CSV of the bed after the warmup, for other codes
@@ -80,6 +81,7 @@ bench::BenchOptions ToOptions(const BenchCliOptions& o) {
   b.bed.use_gravity = !o.no_gravity;
   if (o.drag) b.bed.drag_coefficient = bench::kStokesDragOfBedParticle;
   if (o.viscoelastic) b.bed.maxwell_tau = bench::kBenchMaxwellTau;
+  b.bed.spatial_order = !o.shuffled;
   b.bed.seed = o.seed;
   b.steps = o.steps;
   b.warmup = o.warmup;
@@ -226,6 +228,8 @@ void AddBenchCommand(CLI::App& app, Context& context) {
   cmd->add_flag("--drag", o->drag, "Air drag on every particle (Stokes drag of a 16 um sphere)");
   cmd->add_flag("--viscoelastic", o->viscoelastic,
                 "Maxwell dashpot in the fibre bonds' axial mode (relaxation time 1 ms)");
+  cmd->add_flag("--shuffled", o->shuffled,
+                "Fibres in random memory order instead of sorted by place (what locality is worth)");
   cmd->add_option("--write-bed", o->write_bed,
                   "Write the bed after the warmup as CSV (for scripts/compare/)");
   cmd->add_flag("--scaling", o->scaling,

@@ -244,6 +244,9 @@ FibreBedInfo BuildFibreBed(const FibreBedSpec& spec, World& w) {
                static_cast<std::uint64_t>(placed[f].layer);
     }
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });
+  } else {
+    std::mt19937_64 shuffle(spec.seed);
+    std::shuffle(order.begin(), order.end(), shuffle);
   }
 
   Particles& p = w.particles;

@@ -52,7 +52,9 @@ struct FibreBedSpec {
   // elastic).
   double drag_coefficient = 0.0;
   double maxwell_tau = 0.0;
-  bool spatial_order = true;   // sort fibres by the Morton index of their centre's tile
+  // true: fibres sorted by the Morton index of their centre's tile; false: in random order
+  // (as a scene's forming box places them), to show what memory locality is worth.
+  bool spatial_order = true;
   // true: each fibre is lowered onto the fibres placed before it (it rests on its highest
   // support, `gap` above it); false: layer k sits at height R + gap + k (2R + gap).
   bool deposit = true;

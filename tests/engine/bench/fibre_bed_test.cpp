@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -81,6 +82,25 @@ TEST(FibreBed, IsDeterministicForASeed) {
   BuildFibreBed(SmallBed(), a);
   BuildFibreBed(SmallBed(), b);
   for (std::size_t i = 0; i < a.particles.size(); ++i) ASSERT_EQ(a.particles.x[i], b.particles.x[i]);
+}
+
+// --shuffled: the same fibres at the same places, only their order in memory differs.
+TEST(FibreBed, AShuffledBedHoldsTheSameFibresInAnotherOrder) {
+  FibreBedSpec shuffled = SmallBed();
+  shuffled.spatial_order = false;
+  World a, b;
+  BuildFibreBed(SmallBed(), a);
+  BuildFibreBed(shuffled, b);
+  ASSERT_EQ(a.particles.size(), b.particles.size());
+  auto places = [](const World& w) {
+    std::multiset<std::tuple<double, double, double>> out;
+    for (const Vec3& x : w.particles.x) out.emplace(x.x(), x.y(), x.z());
+    return out;
+  };
+  EXPECT_EQ(places(a), places(b));
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < a.particles.size(); ++i) moved += a.particles.x[i] != b.particles.x[i];
+  EXPECT_GT(moved, a.particles.size() / 2);
 }
 
 TEST(FibreBed, ContactsFormAfterTheLayersLand) {
