@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -29,12 +30,53 @@ bool IsHdf5(const std::string& path) {
   return H5Fis_hdf5(path.c_str()) > 0;
 }
 
+H5FD_file_image_callbacks_t Hdf5File::ImageCallbacks(Image* image) {
+  H5FD_file_image_callbacks_t c{};
+  c.image_malloc = [](std::size_t size, H5FD_file_image_op_t, void* udata) -> void* {
+    auto* im = static_cast<Image*>(udata);
+    void* data = std::malloc(size);
+    if (data) {
+      im->data = data;
+      im->size = size;
+    }
+    return data;
+  };
+  c.image_memcpy = [](void* dest, const void* src, std::size_t size, H5FD_file_image_op_t,
+                      void*) -> void* { return std::memcpy(dest, src, size); };
+  c.image_realloc = [](void* ptr, std::size_t size, H5FD_file_image_op_t, void* udata) -> void* {
+    auto* im = static_cast<Image*>(udata);
+    void* data = std::realloc(ptr, size);
+    if (data) {
+      im->data = data;
+      im->size = size;
+    }
+    return data;
+  };
+  c.image_free = [](void* ptr, H5FD_file_image_op_t, void* udata) -> herr_t {
+    auto* im = static_cast<Image*>(udata);
+    if (ptr == im->data) {
+      if (im->keep_on_close) return 0;  // Save() writes it out and frees it
+      *im = {};
+    }
+    std::free(ptr);
+    return 0;
+  };
+  // The property lists that HDF5 copies share the one Image this file owns.
+  c.udata_copy = [](void* udata) { return udata; };
+  c.udata_free = [](void*) -> herr_t { return 0; };
+  c.udata = image;
+  return c;
+}
+
 Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are reported by our exceptions
   if (mode == Mode::kCreate) {
     // In memory, grown 1 MiB at a time, no backing store (Save() writes it out).
+    image_ = std::make_unique<Image>();
+    const H5FD_file_image_callbacks_t callbacks = ImageCallbacks(image_.get());
     Handle access{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
-    if (access.id >= 0 && H5Pset_fapl_core(access.id, 1 << 20, 0) >= 0)
+    if (access.id >= 0 && H5Pset_fapl_core(access.id, 1 << 20, 0) >= 0 &&
+        H5Pset_file_image_callbacks(access.id, const_cast<H5FD_file_image_callbacks_t*>(&callbacks)) >= 0)
       file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.id);
   } else {
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -50,16 +92,24 @@ Hdf5File::~Hdf5File() {
 
 void Hdf5File::Save() {
   if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw Error(fmt::format("{}: cannot flush", path_));
+  // The file's extent; the driver's buffer runs past it to its 1 MiB increment.
   const ssize_t size = H5Fget_file_image(file_, nullptr, 0);
-  std::vector<char> image(size > 0 ? static_cast<std::size_t>(size) : 0);
-  if (size <= 0 || H5Fget_file_image(file_, image.data(), image.size()) != size)
+  if (size <= 0) throw Error(fmt::format("{}: cannot take the file image", path_));
+  // Closing leaves the bytes as the library hands out a finished file (its superblock no
+  // longer marked open for writing); the callbacks keep the buffer for the write below.
+  image_->keep_on_close = true;
+  const herr_t closed = H5Fclose(file_);
+  file_ = -1;
+  const std::unique_ptr<void, decltype(&std::free)> bytes(image_->data, &std::free);
+  if (closed < 0 || !bytes || image_->size < static_cast<std::size_t>(size))
     throw Error(fmt::format("{}: cannot take the file image", path_));
   std::FILE* out = std::fopen(path_.c_str(), "wb");
   if (!out) throw Error(fmt::format("{}: cannot create the file: {}", path_, std::strerror(errno)));
-  const bool written = std::fwrite(image.data(), 1, image.size(), out) == image.size();
+  const auto length = static_cast<std::size_t>(size);
+  const bool written = std::fwrite(bytes.get(), 1, length, out) == length;
   const int write_errno = errno;
-  const bool closed = std::fclose(out) == 0;
-  if (!written || !closed) {
+  const bool file_closed = std::fclose(out) == 0;
+  if (!written || !file_closed) {
     const int err = written ? errno : write_errno;
     std::error_code ignored;
     std::filesystem::remove(path_, ignored);

@@ -6,6 +6,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,9 @@ bool IsHdf5(const std::string& path);
 // A created file is built in memory (HDF5's core driver) and reaches the disk only in Save(),
 // through plain checked writes: a full disk or an unwritable folder is then an exception
 // naming the file and the system's cause, never a half-written file or a failure inside the
-// HDF5 library at exit.
+// HDF5 library at exit (HDF5 1.10 crashes at exit after a failed close of a file it wrote
+// to disk itself). The driver grows its buffer through our callbacks, so Save() writes that
+// buffer as it is, without a second copy of the file in memory.
 class Hdf5File {
  public:
   enum class Mode { kCreate, kRead };
@@ -48,6 +51,15 @@ class Hdf5File {
   std::vector<std::string> AttributeNames() const;  // of the root group
 
  private:
+  // The in-memory file's bytes, as the core driver last sized them.
+  struct Image {
+    void* data = nullptr;
+    std::size_t size = 0;
+    bool keep_on_close = false;  // set by Save(), which takes the buffer over
+  };
+  static H5FD_file_image_callbacks_t ImageCallbacks(Image* image);
+
+  std::unique_ptr<Image> image_;  // outlives file_: the driver frees the buffer on close
   hid_t file_ = -1;
   std::string path_;
 };
