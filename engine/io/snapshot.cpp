@@ -50,6 +50,14 @@ std::vector<std::int64_t> ToInts(const std::vector<T>& v) {
   return std::vector<std::int64_t>(v.begin(), v.end());
 }
 
+// rows x cols values, row k filled by fill(k, pointer to its first value).
+template <typename T, typename Fill>
+std::vector<T> BondRows(std::size_t rows, std::size_t cols, Fill fill) {
+  std::vector<T> out(rows * cols);
+  for (std::size_t k = 0; k < rows; ++k) fill(k, out.data() + k * cols);
+  return out;
+}
+
 std::vector<double> TypeRow(const BeamBondParams& p) {
   return {p.k_n,         p.k_s,         p.k_b,       p.k_t,       static_cast<double>(p.failure),
           p.max_tension, p.max_shear,   p.max_bending, p.max_twist, p.F_r0,
@@ -197,33 +205,47 @@ void WriteSnapshot(const World& w, const std::string& path, const PointFields& f
 
     const Bonds& b = w.bonds;
     f.CreateGroup("bonds");
-    std::vector<std::int64_t> ij, intact;
-    std::vector<double> L0, b_i, b_j, dashpot, plastic, types;
-    for (std::size_t k = 0; k < b.size(); ++k) {
-      ij.insert(ij.end(), {b.i[k], b.j[k]});
-      if (!b.broken[k]) intact.insert(intact.end(), {b.i[k], b.j[k]});
-      const BondState& s = b.state[k];
-      L0.push_back(s.L0);
-      b_i.insert(b_i.end(), {s.b_i.w(), s.b_i.x(), s.b_i.y(), s.b_i.z()});
-      b_j.insert(b_j.end(), {s.b_j.w(), s.b_j.x(), s.b_j.y(), s.b_j.z()});
-      dashpot.push_back(s.dashpot);
-      plastic.insert(plastic.end(), {s.plastic_y, s.plastic_z});
-    }
+    // Each column is built, written and freed in turn: a snapshot of a large network holds
+    // one column of its bonds in memory at a time.
+    const std::size_t nb = b.size();
+    f.WriteInts("bonds/ij", BondRows<std::int64_t>(nb, 2, [&](std::size_t k, auto out) {
+                  out[0] = b.i[k];
+                  out[1] = b.j[k];
+                }), 2);
+    f.WriteInts("bonds/type", ToInts(b.type), 1);
+    f.WriteInts("bonds/kind", BondRows<std::int64_t>(nb, 1, [&](std::size_t k, auto out) {
+                  out[0] = static_cast<std::int64_t>(b.kind[k]);
+                }), 1);
+    f.WriteInts("bonds/broken", ToInts(b.broken), 1);
+    f.WriteDoubles("bonds/L0", BondRows<double>(nb, 1, [&](std::size_t k, auto out) {
+                     out[0] = b.state[k].L0;
+                   }), 1);
+    f.WriteDoubles("bonds/b_i", BondRows<double>(nb, 4, [&](std::size_t k, auto out) {
+                     const Quat& q = b.state[k].b_i;
+                     out[0] = q.w();
+                     out[1] = q.x();
+                     out[2] = q.y();
+                     out[3] = q.z();
+                   }), 4);
+    f.WriteDoubles("bonds/b_j", BondRows<double>(nb, 4, [&](std::size_t k, auto out) {
+                     const Quat& q = b.state[k].b_j;
+                     out[0] = q.w();
+                     out[1] = q.x();
+                     out[2] = q.y();
+                     out[3] = q.z();
+                   }), 4);
+    f.WriteDoubles("bonds/dashpot", BondRows<double>(nb, 1, [&](std::size_t k, auto out) {
+                     out[0] = b.state[k].dashpot;
+                   }), 1);
+    f.WriteDoubles("bonds/plastic", BondRows<double>(nb, 2, [&](std::size_t k, auto out) {
+                     out[0] = b.state[k].plastic_y;
+                     out[1] = b.state[k].plastic_z;
+                   }), 2);
+    std::vector<double> types;
     for (const BeamBondParams& t : b.types) {
       const std::vector<double> row = TypeRow(t);
       types.insert(types.end(), row.begin(), row.end());
     }
-    std::vector<std::int64_t> kinds;
-    for (BondKind k : b.kind) kinds.push_back(static_cast<std::int64_t>(k));
-    f.WriteInts("bonds/ij", ij, 2);
-    f.WriteInts("bonds/type", ToInts(b.type), 1);
-    f.WriteInts("bonds/kind", kinds, 1);
-    f.WriteInts("bonds/broken", ToInts(b.broken), 1);
-    f.WriteDoubles("bonds/L0", L0, 1);
-    f.WriteDoubles("bonds/b_i", b_i, 4);
-    f.WriteDoubles("bonds/b_j", b_j, 4);
-    f.WriteDoubles("bonds/dashpot", dashpot, 1);
-    f.WriteDoubles("bonds/plastic", plastic, 2);
     f.WriteDoubles("bonds/types", types, kTypeColumns);
     std::vector<double> events;  // step, bond, x, y, z, f_r, f_s, tau_b, tau_t, energy
     for (const BondBreakEvent& e : b.events)
@@ -259,6 +281,10 @@ void WriteSnapshot(const World& w, const std::string& path, const PointFields& f
     f.CreateGroup("fields");
     for (const auto& [name, values] : fields) f.WriteDoubles("fields/" + name, values, 1);
     f.CreateGroup("xdmf");
+    std::vector<std::int64_t> intact;  // the bonds ParaView draws
+    intact.reserve(2 * b.CountIntact());
+    for (std::size_t k = 0; k < nb; ++k)
+      if (!b.broken[k]) intact.insert(intact.end(), {b.i[k], b.j[k]});
     f.WriteInts("xdmf/bonds", intact, 2);
     if (extra) extra(f);
     f.Save();
