@@ -137,8 +137,7 @@ int Run(const RunOptions& o) {
     for (const std::string& w : s.warnings) std::cerr << "warning (" << s.name << "): " << w << "\n";
   if (!o.out.empty()) {
     campaigns::WriteOutputs(o.out, report);
-    if (kept.empty() && start) kept.push_back(std::move(start->state));  // only tests ran
-    campaigns::WriteStageSnapshots(o.out, kept, origin, report);
+    campaigns::WriteStageSnapshots(o.out, std::move(kept), origin, report);
   }
   if (o.json)
     std::cout << campaigns::ReportJson(report).dump(2) << "\n";

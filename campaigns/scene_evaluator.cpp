@@ -33,8 +33,9 @@ Evaluator MakeSceneEvaluator(const std::string& scene_path,
     const pipeline::StageState* start = cache->Find(keys);
     const double reused = start ? static_cast<double>(start->stages.size()) : 0.0;
     std::vector<pipeline::StageState> kept;
-    const pipeline::PipelineReport report =
+    pipeline::PipelineReport report =
         pipeline::RunPipeline(spec, pipeline::Progress{}, start, &kept);
+    pipeline::KeepFinalState(report, start, kept);
     cache->Keep(keys, kept);
     optimizer::EvaluationResult result;
     for (const pipeline::Metric& m : report.AllMetrics()) {

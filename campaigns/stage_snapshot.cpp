@@ -12,47 +12,66 @@
 
 namespace fibrenet::campaigns {
 
-void WriteStageSnapshot(const pipeline::StageState& state, const std::string& path,
+void WriteStageSnapshot(std::span<const pipeline::StageReport> stages,
+                        const pipeline::Network& network, const std::string& path,
                         const SnapshotOrigin& origin, const io::PointFields& fields) {
-  nlohmann::json stages = nlohmann::json::array();
-  for (const pipeline::StageReport& s : state.stages) stages.push_back(StageJson(s));
-  io::WriteNetworkSnapshot(state.network, path, fields,
-                           {{"stages", stages.dump()},
+  nlohmann::json labels = nlohmann::json::array();
+  for (const pipeline::StageReport& s : stages) labels.push_back(StageJson(s));
+  io::WriteNetworkSnapshot(network, path, fields,
+                           {{"stages", labels.dump()},
                             {"scene", origin.scene},
                             {"scene_hash", origin.scene_hash},
                             {"seed", std::to_string(origin.seed)}});
 }
 
-void WriteStageSnapshots(const std::string& dir, const std::vector<pipeline::StageState>& states,
+void WriteStageSnapshot(const pipeline::StageState& state, const std::string& path,
+                        const SnapshotOrigin& origin, const io::PointFields& fields) {
+  WriteStageSnapshot(state.stages, state.network, path, origin, fields);
+}
+
+namespace {
+
+// DIR/snapshots/<stage>.h5 of the network after `stages`, and the frames taken during its
+// last stage (creping's impact: particles with their velocity, so that ParaView colours them
+// by speed as paper Fig. 6 does).
+void WriteSnapshotFiles(const std::filesystem::path& folder,
+                        std::span<const pipeline::StageReport> stages,
+                        const pipeline::Network& network, const SnapshotOrigin& origin,
+                        const io::PointFields& fields) {
+  const std::string& name = stages.back().name;
+  try {
+    WriteStageSnapshot(stages, network, (folder / (name + ".h5")).string(), origin, fields);
+    const std::vector<World>& frames = stages.back().frames;
+    for (std::size_t f = 0; f < frames.size(); ++f)
+      io::WriteSnapshot(frames[f], (folder / fmt::format("{}_frame_{:03d}.h5", name, f)).string());
+  } catch (const Error& e) {
+    throw RunError(e.what());
+  }
+}
+
+}  // namespace
+
+void WriteStageSnapshots(const std::string& dir, std::vector<pipeline::StageState> earlier,
                          const SnapshotOrigin& origin, const pipeline::PipelineReport& report) {
   const std::filesystem::path folder = std::filesystem::path(dir) / "snapshots";
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) throw RunError(fmt::format("cannot create {}: {}", folder.string(), ec.message()));
-  for (std::size_t k = 0; k < states.size(); ++k) {
-    const pipeline::StageState& state = states[k];
-    io::PointFields fields;
-    const bool last = k + 1 == states.size();
-    if (last && report.tests && !report.tests->fibre_energy_at_peak.empty()) {
-      const std::vector<double>& per_fibre = report.tests->fibre_energy_at_peak;
-      std::vector<double>& field = fields["tensile_peak_fibre_energy_J"];
-      for (const std::int32_t f : state.network.world.particles.fibre)
-        field.push_back(per_fibre.at(static_cast<std::size_t>(f)));
-    }
-    const std::string path = (folder / (state.stages.back().name + ".h5")).string();
-    try {
-      WriteStageSnapshot(state, path, origin, fields);
-      // Frames taken during the stage (creping's impact): particles with their velocity, so
-      // that ParaView colours them by speed as paper Fig. 6 does.
-      const std::vector<World>& frames = state.stages.back().frames;
-      for (std::size_t f = 0; f < frames.size(); ++f)
-        io::WriteSnapshot(frames[f], (folder / fmt::format("{}_frame_{:03d}.h5",
-                                                           state.stages.back().name, f))
-                                         .string());
-    } catch (const Error& e) {
-      throw RunError(e.what());
-    }
+  for (pipeline::StageState& state : earlier) {
+    WriteSnapshotFiles(folder, state.stages, state.network, origin, {});
+    state = {};  // its network is on disk: free it before the next is written
   }
+  std::span<const pipeline::StageReport> stages = report.stages;
+  if (!stages.empty() && stages.back().name == "tests") stages = stages.first(stages.size() - 1);
+  if (stages.empty()) return;
+  io::PointFields fields;
+  if (report.tests && !report.tests->fibre_energy_at_peak.empty()) {
+    const std::vector<double>& per_fibre = report.tests->fibre_energy_at_peak;
+    std::vector<double>& field = fields["tensile_peak_fibre_energy_J"];
+    for (const std::int32_t f : report.network.world.particles.fibre)
+      field.push_back(per_fibre.at(static_cast<std::size_t>(f)));
+  }
+  WriteSnapshotFiles(folder, stages, report.network, origin, fields);
 }
 
 StageSnapshot ReadStageSnapshot(const std::string& path) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -18,14 +19,19 @@ struct SnapshotOrigin {
   std::uint64_t seed = 0;
 };
 
+// The network after `stages` (the last one names the stage) as a stage snapshot.
+void WriteStageSnapshot(std::span<const pipeline::StageReport> stages,
+                        const pipeline::Network& network, const std::string& path,
+                        const SnapshotOrigin& origin, const io::PointFields& fields = {});
 void WriteStageSnapshot(const pipeline::StageState& state, const std::string& path,
                         const SnapshotOrigin& origin, const io::PointFields& fields = {});
 
-// Writes DIR/snapshots/<stage>.h5 (with its .xdmf) for each state. The last one, the
-// network the virtual tests started from, carries the field tensile_peak_fibre_energy_J
-// when a tensile test ran: each particle gets its fibre's strain energy increment at the
-// tensile peak (ParaView colours the fibres by it). Throws RunError on I/O failure.
-void WriteStageSnapshots(const std::string& dir, const std::vector<pipeline::StageState>& states,
+// Writes DIR/snapshots/<stage>.h5 (with its .xdmf) for each earlier state, freeing each once
+// written, then for the report's own network (the last network stage, which the virtual
+// tests started from). That last one carries the field tensile_peak_fibre_energy_J when a
+// tensile test ran: each particle gets its fibre's strain energy increment at the tensile
+// peak (ParaView colours the fibres by it). Throws RunError on I/O failure.
+void WriteStageSnapshots(const std::string& dir, std::vector<pipeline::StageState> earlier,
                          const SnapshotOrigin& origin, const pipeline::PipelineReport& report);
 
 struct StageSnapshot {

@@ -78,10 +78,15 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
     report.network = start->network;
     progress.Say(fmt::format("starting after {} from an earlier run", report.stages.back().name));
   }
-  // The kept networks park their neighbour lists: a run that keeps every stage holds one
-  // network's rows, not one per stage.
-  auto keep = [&] {
-    if (kept) kept->push_back({report.stages, {KeptCopy(report.network.world), report.network.fibres}});
+  // A stage's network is copied aside only when a later stage is about to change it, so the
+  // last stage's state is the returned network itself, never a second copy of it. The kept
+  // networks park their neighbour lists: a run that keeps every stage holds one network's
+  // rows, not one per stage.
+  bool unkept = false;
+  auto keep = [&] { unkept = kept != nullptr; };
+  auto set_aside = [&] {
+    if (unkept) kept->push_back({report.stages, {KeptCopy(report.network.world), report.network.fibres}});
+    unkept = false;
   };
 
   if (done < 1) {
@@ -125,6 +130,7 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
 
   if (spec.pressing && done < 2) {
     Stopwatch clock;
+    set_aside();
     StageReport stage;
     stage.name = "pressing";
     PressingResult r = Press(report.network, spec.sheet, *spec.pressing, spec.metrics, progress);
@@ -153,6 +159,7 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
 
   if (spec.through_air && done < 2) {
     Stopwatch clock;
+    set_aside();
     StageReport stage;
     stage.name = "through_air";
     ThroughAirResult r = DryThroughAir(report.network, spec.sheet, *spec.through_air, progress);
@@ -172,6 +179,7 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
 
   if (spec.creping && done < 3) {
     Stopwatch clock;
+    set_aside();
     StageReport stage;
     stage.name = "creping";
     const MetricsSettings& m = spec.metrics;
@@ -229,6 +237,15 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
   }
   report.wall_s = total.Seconds();
   return report;
+}
+
+void KeepFinalState(PipelineReport& report, const StageState* start,
+                    std::vector<StageState>& kept) {
+  auto end = report.stages.end();
+  if (end != report.stages.begin() && std::prev(end)->name == "tests") --end;
+  const auto network_stages = static_cast<std::size_t>(end - report.stages.begin());
+  if (network_stages <= (start ? start->stages.size() : 0)) return;
+  kept.push_back({std::vector<StageReport>(report.stages.begin(), end), std::move(report.network)});
 }
 
 }  // namespace fibrenet::pipeline

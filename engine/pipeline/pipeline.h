@@ -71,9 +71,15 @@ struct StageState {
 
 // Throws InputError when spec is invalid and RunError when a stage fails.
 // `start`: continue after the stages it holds (they must be the spec's first stages).
-// `kept`: receives the state after each network stage this run computes.
+// `kept`: receives the state after each network stage this run computes except the last,
+// whose state is the returned report's network (with its stages before "tests").
 PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
                            const StageState* start = nullptr,
                            std::vector<StageState>* kept = nullptr);
+
+// Completes `kept` with the state after the run's last network stage, its network moved out of
+// the report, when the run computed that stage (not when it started after it, from `start`).
+void KeepFinalState(PipelineReport& report, const StageState* start,
+                    std::vector<StageState>& kept);
 
 }  // namespace fibrenet::pipeline

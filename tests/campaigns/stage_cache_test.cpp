@@ -60,8 +60,13 @@ TEST(StageCache, ResumedRunEqualsARunFromScratch) {
   StageCache cache;
   std::vector<pipeline::StageState> kept;
   EXPECT_EQ(cache.Find(StageKeys(text, first, 7)), nullptr);
-  pipeline::RunPipeline(ParseScene(text, path, first), pipeline::Progress{}, nullptr, &kept);
+  pipeline::PipelineReport report =
+      pipeline::RunPipeline(ParseScene(text, path, first), pipeline::Progress{}, nullptr, &kept);
+  ASSERT_EQ(kept.size(), 1u);  // forming; pressing's state is the report's network
+  pipeline::KeepFinalState(report, nullptr, kept);
   ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[1].stages.back().name, "pressing");
+  EXPECT_EQ(report.network.world.particles.size(), 0u);  // moved, not copied
   cache.Keep(StageKeys(text, first, 7), kept);
 
   // Same scene: starts after pressing. Other pressing target: starts after forming.
@@ -99,7 +104,9 @@ TEST(StageCache, AFolderCarriesNetworksToTheNextProcess) {
   {  // One process forms and presses, keeping its networks in the folder.
     StageCache cache(std::size_t{1} << 30, folder);
     std::vector<pipeline::StageState> kept;
-    pipeline::RunPipeline(ParseScene(text, path, first), pipeline::Progress{}, nullptr, &kept);
+    pipeline::PipelineReport report =
+        pipeline::RunPipeline(ParseScene(text, path, first), pipeline::Progress{}, nullptr, &kept);
+    pipeline::KeepFinalState(report, nullptr, kept);
     cache.Keep(StageKeys(text, first, 7), kept);
   }
   // The next (a resumed campaign, another rank) finds the formed network there.
