@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -220,20 +221,16 @@ void WriteSnapshot(const World& w, const std::string& path, const PointFields& f
     f.WriteDoubles("bonds/L0", BondRows<double>(nb, 1, [&](std::size_t k, auto out) {
                      out[0] = b.state[k].L0;
                    }), 1);
-    f.WriteDoubles("bonds/b_i", BondRows<double>(nb, 4, [&](std::size_t k, auto out) {
-                     const Quat& q = b.state[k].b_i;
-                     out[0] = q.w();
-                     out[1] = q.x();
-                     out[2] = q.y();
-                     out[3] = q.z();
-                   }), 4);
-    f.WriteDoubles("bonds/b_j", BondRows<double>(nb, 4, [&](std::size_t k, auto out) {
-                     const Quat& q = b.state[k].b_j;
-                     out[0] = q.w();
-                     out[1] = q.x();
-                     out[2] = q.y();
-                     out[3] = q.z();
-                   }), 4);
+    // The bond's frame in each particle's body frame, as w, x, y, z.
+    for (const auto& [name, frame] : {std::pair{"bonds/b_i", &BondState::b_i},
+                                      std::pair{"bonds/b_j", &BondState::b_j}})
+      f.WriteDoubles(name, BondRows<double>(nb, 4, [&](std::size_t k, auto out) {
+                       const Quat& q = b.state[k].*frame;
+                       out[0] = q.w();
+                       out[1] = q.x();
+                       out[2] = q.y();
+                       out[3] = q.z();
+                     }), 4);
     f.WriteDoubles("bonds/dashpot", BondRows<double>(nb, 1, [&](std::size_t k, auto out) {
                      out[0] = b.state[k].dashpot;
                    }), 1);
