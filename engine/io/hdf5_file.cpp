@@ -73,10 +73,10 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
   if (mode == Mode::kCreate) {
     // In memory, grown 1 MiB at a time, no backing store (Save() writes it out).
     image_ = std::make_unique<Image>();
-    const H5FD_file_image_callbacks_t callbacks = ImageCallbacks(image_.get());
+    H5FD_file_image_callbacks_t callbacks = ImageCallbacks(image_.get());
     Handle access{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
     if (access.id >= 0 && H5Pset_fapl_core(access.id, 1 << 20, 0) >= 0 &&
-        H5Pset_file_image_callbacks(access.id, const_cast<H5FD_file_image_callbacks_t*>(&callbacks)) >= 0)
+        H5Pset_file_image_callbacks(access.id, &callbacks) >= 0)
       file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.id);
   } else {
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -91,6 +91,7 @@ Hdf5File::~Hdf5File() {
 }
 
 void Hdf5File::Save() {
+  if (!image_ || file_ < 0) throw Error(fmt::format("{}: not a file being created", path_));
   if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw Error(fmt::format("{}: cannot flush", path_));
   // The file's extent; the driver's buffer runs past it to its 1 MiB increment.
   const ssize_t size = H5Fget_file_image(file_, nullptr, 0);
