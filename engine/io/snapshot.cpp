@@ -222,15 +222,17 @@ void WriteSnapshot(const World& w, const std::string& path, const PointFields& f
                      out[0] = b.state[k].L0;
                    }), 1);
     // The bond's frame in each particle's body frame, as w, x, y, z.
-    for (const auto& [name, frame] : {std::pair{"bonds/b_i", &BondState::b_i},
-                                      std::pair{"bonds/b_j", &BondState::b_j}})
-      f.WriteDoubles(name, BondRows<double>(nb, 4, [&](std::size_t k, auto out) {
+    for (const auto& column : {std::pair{"bonds/b_i", &BondState::b_i},
+                               std::pair{"bonds/b_j", &BondState::b_j}}) {
+      const auto frame = column.second;
+      f.WriteDoubles(column.first, BondRows<double>(nb, 4, [&](std::size_t k, auto out) {
                        const Quat& q = b.state[k].*frame;
                        out[0] = q.w();
                        out[1] = q.x();
                        out[2] = q.y();
                        out[3] = q.z();
                      }), 4);
+    }
     f.WriteDoubles("bonds/dashpot", BondRows<double>(nb, 1, [&](std::size_t k, auto out) {
                      out[0] = b.state[k].dashpot;
                    }), 1);
