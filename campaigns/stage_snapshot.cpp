@@ -61,8 +61,7 @@ void WriteStageSnapshots(const std::string& dir, std::vector<pipeline::StageStat
     WriteSnapshotFiles(folder, state.stages, state.network, origin, {});
     state = {};  // its network is on disk: free it before the next is written
   }
-  std::span<const pipeline::StageReport> stages = report.stages;
-  if (!stages.empty() && stages.back().name == "tests") stages = stages.first(stages.size() - 1);
+  const std::span<const pipeline::StageReport> stages = pipeline::NetworkStages(report);
   if (stages.empty()) return;
   io::PointFields fields;
   if (report.tests && !report.tests->fibre_energy_at_peak.empty()) {

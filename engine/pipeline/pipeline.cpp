@@ -239,13 +239,17 @@ PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
   return report;
 }
 
+std::span<const StageReport> NetworkStages(const PipelineReport& report) {
+  std::span<const StageReport> stages = report.stages;
+  if (!stages.empty() && stages.back().name == "tests") stages = stages.first(stages.size() - 1);
+  return stages;
+}
+
 void KeepFinalState(PipelineReport& report, const StageState* start,
                     std::vector<StageState>& kept) {
-  auto end = report.stages.end();
-  if (end != report.stages.begin() && std::prev(end)->name == "tests") --end;
-  const auto network_stages = static_cast<std::size_t>(end - report.stages.begin());
-  if (network_stages <= (start ? start->stages.size() : 0)) return;
-  kept.push_back({std::vector<StageReport>(report.stages.begin(), end), std::move(report.network)});
+  const std::span<const StageReport> stages = NetworkStages(report);
+  if (stages.size() <= (start ? start->stages.size() : 0)) return;
+  kept.push_back({{stages.begin(), stages.end()}, std::move(report.network)});
 }
 
 }  // namespace fibrenet::pipeline

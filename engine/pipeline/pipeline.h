@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -76,6 +77,9 @@ struct StageState {
 PipelineReport RunPipeline(const PipelineSpec& spec, const Progress& progress,
                            const StageState* start = nullptr,
                            std::vector<StageState>* kept = nullptr);
+
+// The report's network stages: its stages without the trailing "tests".
+std::span<const StageReport> NetworkStages(const PipelineReport& report);
 
 // Completes `kept` with the state after the run's last network stage, its network moved out of
 // the report, when the run computed that stage (not when it started after it, from `start`).
