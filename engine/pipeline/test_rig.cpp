@@ -161,9 +161,17 @@ StripEnds FindStripEnds(const World& w) {
   int first = 0, last = bins - 1;
   while (mass[first] < threshold) ++first;
   while (mass[last] < threshold) --last;
-  const double lo = ends.lo;
-  ends.lo = lo + first * bin;
-  ends.hi = std::min(ends.hi, lo + (last + 1) * bin);
+  // The ends are the outermost particle centres in the bins from the first whole one to the
+  // last: a bin's edge would add up to a bin where a tail runs on beyond the strip.
+  const double origin = ends.lo;
+  ends.lo = std::numeric_limits<double>::infinity();
+  ends.hi = -ends.lo;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const int b = std::min(bins - 1, static_cast<int>((p.x[i].x() - origin) / bin));
+    if (b < first || b > last) continue;
+    ends.lo = std::min(ends.lo, p.x[i].x());
+    ends.hi = std::max(ends.hi, p.x[i].x());
+  }
   ends.length = ends.hi - ends.lo;
   return ends;
 }

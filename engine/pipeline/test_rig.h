@@ -96,10 +96,10 @@ std::size_t CutAlongX(Network& net, double margin);
 
 // Where a strip along x ends, for its grips. A sheet cut from a periodic cell has clean ends:
 // its outermost centres. A sheet that comes to the test already open along x (a creped strip)
-// trails loose fibres and fragments from its cut ends; its ends are where its mass per unit
-// length first reaches half its median (over bins of two particle diameters), so that the
-// clamps close on the whole sheet and the loose ends stick out beyond them, as they would
-// from a tester's clamps. Call it before CutAlongX.
+// trails loose fibres and fragments from its cut ends; its ends are its outermost centres in
+// the bins (of two particle diameters) from the first to the last where its mass per unit
+// length reaches half its median, so that the clamps close on the whole sheet and the loose
+// ends stick out beyond them, as they would from a tester's clamps. Call it before CutAlongX.
 struct StripEnds {
   double lo = 0.0, hi = 0.0;  // [m]
   double length = 0.0;        // the strip's length [m]: the cell's for a periodic sheet

@@ -1,11 +1,14 @@
 // The virtual-test rig on strips whose answer is known in closed form: parallel straight
 // fibres along the load (tensile stiffness n E A / W, pure-bending stiffness n E I / W), plus
 // the bookkeeping (Gini, top share, CSV curves) and the settings' messages.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
+
+#include <algorithm>
 
 #include <gtest/gtest.h>
 
@@ -165,6 +168,9 @@ TEST(TensileTest, AnOpenStripIsGrippedWhereItIsWholeNotByALooseEnd) {
   EXPECT_NEAR(ends.lo, first, 1e-12);
   EXPECT_GE(ends.hi, last);
   EXPECT_LE(ends.hi, last + 2.0 * kD + 1e-12);  // within one bin of two diameters
+  // The ends are particle centres, not the edges of the bins.
+  const Particles& p = w.particles;
+  EXPECT_TRUE(std::any_of(p.x.begin(), p.x.end(), [&](const Vec3& x) { return x.x() == ends.hi; }));
   EXPECT_NEAR(ends.length, ends.hi - ends.lo, 1e-15);
   // Clamped at its outermost centres, the right grip would hold the loose fibre alone.
   const TensileResult r = RunTensileTest(net, SmallStrainTensile());
