@@ -70,6 +70,11 @@ pipeline::CompressionSettings ReadCompression(TableReader& r, pipeline::Compress
                   ? Loading::kStepped
                   : Loading::kContinuous;
   c.settle_max_steps = r.Integer("settle_max_steps", c.settle_max_steps, 0, 10'000'000'000LL);
+  c.window_samples = static_cast<int>(r.Integer("window_samples", c.window_samples, 0, 1000));
+  c.pressure_step_fraction = r.Number("pressure_step_fraction", c.pressure_step_fraction,
+                                      OpenClosed(0, 10), "of the last rest's pressure");
+  c.max_move_halvings =
+      static_cast<int>(r.Integer("max_move_halvings", c.max_move_halvings, 0, 30));
   c.max_strain = r.Number("max_strain", c.max_strain, OpenClosed(0, 0.95), "");
   c.max_pressure =
       r.Number("max_pressure_kPa", c.max_pressure * 1e-3, Closed(0, 1e6), "kPa (0 = strain only)") *

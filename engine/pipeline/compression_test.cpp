@@ -226,6 +226,13 @@ std::string CompressionSettings::Validate() const {
   if (settle_max_steps < 0)
     return fmt::format("settle_max_steps = {}: must be >= 0 (0 = 100 x a move's steps)",
                        settle_max_steps);
+  if (!(window_samples >= 0 && window_samples <= 1000))
+    return fmt::format("window_samples = {}: must lie in [0, 1000] (0 = moves of one size)",
+                       window_samples);
+  if (!(pressure_step_fraction > 0.0 && pressure_step_fraction <= 10.0))
+    return fmt::format("pressure_step_fraction = {}: must lie in (0, 10]", pressure_step_fraction);
+  if (!(max_move_halvings >= 0 && max_move_halvings <= 30))
+    return fmt::format("max_move_halvings = {}: must lie in [0, 30]", max_move_halvings);
   return ValidateLoading(samples, max_steps, switches, quasi_static);
 }
 

@@ -61,6 +61,17 @@ struct CompressionSettings {
   enum class Loading { kContinuous, kStepped };
   Loading loading = Loading::kContinuous;
   std::int64_t settle_max_steps = 0;  // stepped: most steps a rest may take (0: 100 x a move's)
+  // Stepped: the moves shrink where the curve is steep. A move whose rest pressure has risen
+  // (loading) or fallen (unloading) by more than the allowed step since the last rest is
+  // undone and made again at half its gap, at most max_move_halvings times; after a move
+  // that changed it by less than half the step, the next one doubles, up to max_strain /
+  // samples. The allowed step is (modulus_pressure_hi - modulus_pressure_lo) /
+  // window_samples while the last rest's pressure is below modulus_pressure_hi, and
+  // pressure_step_fraction x that pressure above it. A creped sheet's web is met within one
+  // move of the loops' grid otherwise. window_samples = 0: every move at max_strain / samples.
+  int window_samples = 8;
+  double pressure_step_fraction = 0.25;
+  int max_move_halvings = 12;
   double max_strain = 0.6;        // (0, 0.95]
   double max_pressure = 0.0;      // [Pa]; > 0: stop loading at this pressure (or max_strain)
   double strain_rate = 1.0;       // platen speed / h0 [1/s]

@@ -96,10 +96,21 @@ TEST(SceneFile, CompressionLoadsContinuouslyUnlessTheSceneSaysStepped) {
   const std::string table = std::string(kMinimal) + "[compression]\n";
   using Loading = pipeline::CompressionSettings::Loading;
   EXPECT_EQ(ParseScene(table, "c.toml").tests.compression->loading, Loading::kContinuous);
-  const auto stepped =
-      ParseScene(table + "loading = \"stepped\"\nsettle_max_steps = 3000\n", "s.toml");
+  const auto stepped = ParseScene(table +
+                                      "loading = \"stepped\"\nsettle_max_steps = 3000\n"
+                                      "window_samples = 12\npressure_step_fraction = 0.1\n"
+                                      "max_move_halvings = 16\n",
+                                  "s.toml");
   EXPECT_EQ(stepped.tests.compression->loading, Loading::kStepped);
   EXPECT_EQ(stepped.tests.compression->settle_max_steps, 3000);
+  EXPECT_EQ(stepped.tests.compression->window_samples, 12);
+  EXPECT_EQ(stepped.tests.compression->pressure_step_fraction, 0.1);
+  EXPECT_EQ(stepped.tests.compression->max_move_halvings, 16);
+  const std::string halvings =
+      InputErrorOf([&] { ParseScene(table + "max_move_halvings = 31\n", "halvings.toml"); });
+  EXPECT_NE(halvings.find("halvings.toml"), std::string::npos) << halvings;
+  EXPECT_NE(halvings.find("compression.max_move_halvings"), std::string::npos) << halvings;
+  EXPECT_NE(halvings.find("30"), std::string::npos) << halvings;
   const std::string msg =
       InputErrorOf([&] { ParseScene(table + "loading = \"pulsed\"\n", "loading.toml"); });
   EXPECT_NE(msg.find("loading.toml"), std::string::npos) << msg;

@@ -201,5 +201,94 @@ TEST(ZdCompression, AnOpenStripIsLoadedOverItsFootprintNotTheCell) {
                   periodic.Value("zd_compression_energy_J_per_m2"), 1.0, 1e-6);
 }
 
+// A creped sheet's case: a web (the open sphere layer) with a thin loop standing on the floor
+// beside it (16 spheres of 16 um, leaning 20 degrees), which folds over under a small load.
+// The platen meets the loop's top at about eight times the web's caliper; the web is met near
+// strain 0.87, and goes from no load to past the modulus window within less than a move of a
+// 20-move loading.
+Network LoopBesideAWeb() {
+  Network net = SphereLayer(true);
+  const double d = 16e-6, lean = 20.0 * kPi / 180.0, x0 = 30 * 32e-6, y0 = 10 * 32e-6;
+  std::vector<Vec3> loop;
+  for (int k = 0; k < 16; ++k)
+    loop.push_back(Vec3(x0 + k * d * std::sin(lean), y0, 0.5 * d + k * d * std::cos(lean)));
+  FibreProperties thin = TestFibre(16 * d);
+  thin.diameter = d;
+  thin.coarseness = 0.25 * TestFibre(16 * d).coarseness;
+  net.AddFibre(thin, loop, FibreBondOptions{});
+  return net;
+}
+
+// Loading samples in the modulus window, and dp / dgap of the window's fit [Pa/m].
+struct WindowReading {
+  int samples = 0;
+  double stiffness = 0.0;
+};
+WindowReading ReadWindow(const CompressionResult& r, const CompressionSettings& s) {
+  const Curve& c = r.curves[0];
+  const std::vector<double> p = c.Values("pressure_Pa"), branch = c.Values("branch");
+  WindowReading w;
+  for (std::size_t k = 0; k < p.size() && branch[k] == 0.0; ++k)
+    w.samples += p[k] >= s.modulus_pressure_lo && p[k] <= s.modulus_pressure_hi ? 1 : 0;
+  w.stiffness = r.Value("zd_modulus_kPa") * 1e3 / r.h0;
+  return w;
+}
+
+// The stepped loading's moves shrink where the curve is steep: with 20 moves to the web, the
+// web's stiffness in the window is read from at least 6 rests and equals that of the web
+// alone loaded in fine moves within 3%; with moves of one size the window holds at most one
+// rest.
+TEST(ZdCompression, SteppedMovesShrinkWhereTheWebIsMet) {
+  CompressionSettings s;
+  s.loading = CompressionSettings::Loading::kStepped;
+  s.max_strain = 0.95;
+  s.max_pressure = 5e3;
+  s.samples = 20;
+  s.quasi_static.loading_steps = 8000;
+  const CompressionResult sized = RunCompressionTest(LoopBesideAWeb(), s);
+  CompressionSettings one_size = s;
+  one_size.window_samples = 0;
+  const CompressionResult fixed = RunCompressionTest(LoopBesideAWeb(), one_size);
+  CompressionSettings fine = one_size;
+  fine.max_strain = 0.03;
+  fine.samples = 200;
+  const CompressionResult web = RunCompressionTest(SphereLayer(true), fine);
+
+  const WindowReading a = ReadWindow(sized, s), b = ReadWindow(fixed, one_size),
+                      ref = ReadWindow(web, fine);
+  std::printf("loop beside a web: sized %d window samples, %.4g Pa/um, %lld steps; one size %d, "
+              "%.4g Pa/um, %lld steps; web alone %d, %.4g Pa/um, h0 %.1f / %.1f um\n",
+              a.samples, a.stiffness * 1e-6, static_cast<long long>(sized.steps), b.samples,
+              b.stiffness * 1e-6, static_cast<long long>(fixed.steps), ref.samples,
+              ref.stiffness * 1e-6, sized.h0 * 1e6, web.h0 * 1e6);
+  for (const auto& w : sized.warnings) std::printf("  %s\n", w.c_str());
+  EXPECT_GE(ref.samples, 6);
+  EXPECT_GE(a.samples, 6);
+  EXPECT_LE(b.samples, 1);
+  EXPECT_NEAR(a.stiffness / ref.stiffness, 1.0, 0.01);
+  // Every rest on the web reads the web's pressure at its gap: a rest is read where the
+  // platen stopped, not a step before (contact starting in a move's last step read 0).
+  const std::vector<double> gap = sized.curves[0].Values("gap_m"),
+                            p = sized.curves[0].Values("pressure_Pa"),
+                            branch = sized.curves[0].Values("branch");
+  const std::vector<double> web_gap = web.curves[0].Values("gap_m"),
+                            web_p = web.curves[0].Values("pressure_Pa"),
+                            web_branch = web.curves[0].Values("branch");
+  std::size_t web_turn = 0;
+  while (web_branch[web_turn] == 0.0) ++web_turn;
+  int on_web = 0;
+  for (std::size_t k = 0; k < gap.size() && branch[k] == 0.0; ++k) {
+    if (gap[k] >= web.h0 || gap[k] < web_gap[web_turn - 1]) continue;
+    std::size_t m = 1;
+    while (web_gap[m] > gap[k]) ++m;
+    const double a = (web_gap[m - 1] - gap[k]) / (web_gap[m - 1] - web_gap[m]);
+    EXPECT_NEAR(p[k], web_p[m - 1] + a * (web_p[m] - web_p[m - 1]), 0.02 * s.max_pressure)
+        << "gap " << gap[k];
+    ++on_web;
+  }
+  EXPECT_GE(on_web, 6);
+  EXPECT_TRUE(sized.quasi_static) << sized.Value("zd_kinetic_work_ratio");
+}
+
 }  // namespace
 }  // namespace fibrenet::pipeline
