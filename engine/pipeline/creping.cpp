@@ -491,8 +491,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     const CrepeSpectrum spectrum = AnalyseCrepe(profile.height, u_bin);
     out.crepe_frequency = spectrum.frequency;
     out.crepe_amplitude = spectrum.amplitude;
-    out.caliper_after = profile.caliper;
-    out.bulk_gain = out.caliper_before > 0.0 ? out.caliper_after / out.caliper_before : 0.0;
+    out.caliper_at_blade = profile.caliper;
     out.crepe_profile.name = "crepe_profile";
     out.crepe_profile.columns = {"u_um", "height_um"};
     for (std::size_t k = 0; k < profile.height.size(); ++k)
@@ -530,6 +529,16 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   out.particles_removed = KeepParticles(net, keep);
   RelaxCrepedSheet(net, sheet, s, progress, out);
   w.contact.normal.hard_stiffness = hard_stiffness_before;
+  // The bulk is the creped sheet's at rest, read as the sheet's before: at the blade it still
+  // holds what springs back (loops thrown up by the impact) and the tilt of a band thrown off
+  // the Yankee, which the face's frame reads as height.
+  std::vector<std::size_t> kept(p.size());
+  std::iota(kept.begin(), kept.end(), std::size_t{0});
+  out.caliper_after = MeasureCrepeProfile(InFrame(p, kept, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitZ()),
+                                          w.cell.lo.x(), w.cell.hi.x(), u_bin, w.cell.lo.y(),
+                                          w.cell.hi.y(), y_bin, metrics.surface_percentile)
+                          .caliper;
+  out.bulk_gain = out.caliper_before > 0.0 ? out.caliper_after / out.caliper_before : 0.0;
   return out;
 }
 

@@ -26,8 +26,9 @@
 //
 // Metrics. The creped sheet (the largest piece held together by intact bonds, beyond the
 // takeaway height) is read in its own frame (u along the face, h normal to it):
-// crepe_profile.h gives the crepe frequency (folds per mm of creped sheet) and amplitude, and
-// the caliper against the sheet's before creping (bulk_gain). Dust: every other piece.
+// crepe_profile.h gives the crepe frequency (folds per mm of creped sheet), the amplitude and
+// the caliper at the blade. Dust: every other piece. bulk_gain is the creped sheet's caliper
+// once it has come to rest off the blade (below) against the sheet's before creping.
 #pragma once
 
 #include <cstdint>
@@ -107,7 +108,10 @@ struct CrepingResult {
   double adhesive_broken_fraction = 0.0;
   double crepe_frequency = 0.0;             // [1/m] of creped sheet
   double crepe_amplitude = 0.0;             // [m]
-  double caliper_before = 0.0, caliper_after = 0.0;  // [m]
+  // Plate calipers [m]: of the sheet before creping and of the creped sheet at rest, both
+  // in the sheet's frame (bulk_gain = after / before), and of the creped sheet in the blade
+  // face's frame as the blade leaves it (caliper_at_blade).
+  double caliper_before = 0.0, caliper_after = 0.0, caliper_at_blade = 0.0;
   double bulk_gain = 0.0;
   std::size_t dust_count = 0;
   double dust_mass_fraction = 0.0;
