@@ -1,7 +1,6 @@
 // The stepped loading of the ZD compression (CompressionSettings::Loading::kStepped).
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 
 #include <fmt/format.h>

@@ -185,6 +185,17 @@ Mat3 SheetAxes(const Particles& p, const std::vector<std::size_t>& sheet, const 
   return R;
 }
 
+// Plate caliper of the whole sheet in its own frame (x along MD, z up) over [x0, x1], as
+// the crepe profile reads it: the same measure before creping and at rest after.
+double SheetCaliper(const World& w, double x0, double x1, const MetricsSettings& metrics) {
+  std::vector<std::size_t> all(w.particles.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  return MeasureCrepeProfile(InFrame(w.particles, all, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitZ()),
+                             x0, x1, metrics.profile_bin, w.cell.lo.y(), w.cell.hi.y(),
+                             metrics.thickness_grid, metrics.surface_percentile)
+      .caliper;
+}
+
 }  // namespace
 
 std::string AdhesionSettings::Validate() const {
@@ -251,15 +262,11 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   CrepingResult out;
   const std::size_t n_sheet = p.size(), n_bonds = w.bonds.size(), n_types = w.bonds.types.size();
   if (n_sheet == 0) throw Error("Crepe: empty network");
-  std::vector<std::size_t> all(n_sheet);
-  std::iota(all.begin(), all.end(), std::size_t{0});
 
   // The sheet before creping, as a finite strip along MD.
   const double x0 = w.cell.lo.x(), x1 = w.cell.hi.x(), Ly = w.cell.Ly();
   const double y_bin = metrics.thickness_grid, u_bin = metrics.profile_bin;
-  out.caliper_before = MeasureCrepeProfile(InFrame(p, all, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitZ()),
-                                           x0, x1, u_bin, w.cell.lo.y(), w.cell.hi.y(), y_bin,
-                                           metrics.surface_percentile).caliper;
+  out.caliper_before = SheetCaliper(w, x0, x1, metrics);
   const double takeaway = s.takeaway_height > 0.0 ? s.takeaway_height : 3.0 * out.caliper_before;
   const double run_out = 2.0 * takeaway * (1.0 + s.crepe_ratio);
   const double cot = std::cos(s.creping_angle) / std::sin(s.creping_angle);
@@ -532,12 +539,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   // The bulk is the creped sheet's at rest, read as the sheet's before: at the blade it still
   // holds what springs back (loops thrown up by the impact) and the tilt of a band thrown off
   // the Yankee, which the face's frame reads as height.
-  std::vector<std::size_t> kept(p.size());
-  std::iota(kept.begin(), kept.end(), std::size_t{0});
-  out.caliper_after = MeasureCrepeProfile(InFrame(p, kept, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitZ()),
-                                          w.cell.lo.x(), w.cell.hi.x(), u_bin, w.cell.lo.y(),
-                                          w.cell.hi.y(), y_bin, metrics.surface_percentile)
-                          .caliper;
+  out.caliper_after = SheetCaliper(w, w.cell.lo.x(), w.cell.hi.x(), metrics);
   out.bulk_gain = out.caliper_before > 0.0 ? out.caliper_after / out.caliper_before : 0.0;
   return out;
 }
