@@ -40,7 +40,7 @@ slow=(
   'Pipeline\..*'
   'VirtualTests\..*'
   'NetworkChecks\..*'
-  'ZdCompression\.(StopsAtTheTargetPressure|TheSlowToeKeepsAPressedSheetQuasiStatic|ALoopStoppedAtALowPressureReturnsNoMoreWorkThanItTook)'
+  'ZdCompression\.(StopsAtTheTargetPressure|TheSlowToeKeepsAPressedSheetQuasiStatic|ALoopStoppedAtALowPressureReturnsNoMoreWorkThanItTook|SteppedMovesShrinkWhereTheWebIsMet)'
   'LooseMat\..*'
   'Relief\.SphereRestsOnePocketDepthLowerOverAPocket'
   'Creping\..*'
