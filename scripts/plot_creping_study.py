@@ -29,7 +29,7 @@ def column(path, name):
 panels = [("crepe_frequency_per_mm", "crepe frequency [1/mm]"),
           ("bonds_broken_fraction", "fibre-fibre bonds broken"),
           ("dust_mass_fraction", "dust mass fraction"),
-          ("bulk_gain", "bulk gain (caliper after / before)")]
+          ("bulk_gain", "bulk gain at rest (caliper after / before)")]
 fig, axes = plt.subplots(1, len(panels), figsize=(16, 3.6))
 rows = []
 for angle in angles:
