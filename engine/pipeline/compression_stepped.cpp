@@ -91,7 +91,8 @@ std::int64_t LoadStepped(CompressionRig& rig, const CompressionSettings& s,
       const int unsettled_before = unsettled;
       if (!move_and_settle(direction, move)) return false;
       const double change = direction * (before_pressure - rig.Pressure());
-      if (sized && change > allowed_step(before_pressure)) {
+      const double step_limit = allowed_step(before_pressure);
+      if (sized && change > step_limit) {
         if (gap > smallest_gap) {
           rig.w = std::move(*before);
           unsettled = unsettled_before;
@@ -100,7 +101,7 @@ std::int64_t LoadStepped(CompressionRig& rig, const CompressionSettings& s,
         }
         ++unresolved;
       }
-      if (sized && change < 0.5 * allowed_step(before_pressure)) gap = std::min(2.0 * gap, base_gap);
+      if (sized && change < 0.5 * step_limit) gap = std::min(2.0 * gap, base_gap);
       rig.Sample(direction > 0);
       if (done()) return true;
     }

@@ -152,9 +152,12 @@ StripEnds FindStripEnds(const World& w) {
   const double bin = 4.0 * r_max;
   const int bins = static_cast<int>(std::ceil(ends.length / bin));
   if (bins < 4) return ends;
+  const double origin = ends.lo;
+  auto bin_of = [&](std::size_t i) {
+    return std::min(bins - 1, static_cast<int>((p.x[i].x() - origin) / bin));
+  };
   std::vector<double> mass(static_cast<std::size_t>(bins), 0.0);
-  for (std::size_t i = 0; i < p.size(); ++i)
-    mass[std::min(bins - 1, static_cast<int>((p.x[i].x() - ends.lo) / bin))] += p.mass[i];
+  for (std::size_t i = 0; i < p.size(); ++i) mass[bin_of(i)] += p.mass[i];
   std::vector<double> sorted = mass;
   std::nth_element(sorted.begin(), sorted.begin() + bins / 2, sorted.end());
   const double threshold = 0.5 * sorted[bins / 2];
@@ -163,11 +166,10 @@ StripEnds FindStripEnds(const World& w) {
   while (mass[last] < threshold) --last;
   // The ends are the outermost particle centres in the bins from the first whole one to the
   // last: a bin's edge would add up to a bin where a tail runs on beyond the strip.
-  const double origin = ends.lo;
   ends.lo = std::numeric_limits<double>::infinity();
   ends.hi = -ends.lo;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const int b = std::min(bins - 1, static_cast<int>((p.x[i].x() - origin) / bin));
+    const int b = bin_of(i);
     if (b < first || b > last) continue;
     ends.lo = std::min(ends.lo, p.x[i].x());
     ends.hi = std::max(ends.hi, p.x[i].x());
