@@ -75,14 +75,18 @@ struct BeamBondParams {
 };
 
 // Persistent state of one bond: its reference configuration and history.
+// The frames come first: a quaternion is aligned to 32 bytes in an AVX build, and a double
+// before them would be padded out to 32 bytes (a state of 128 bytes instead of 96).
 struct BondState {
-  double L0 = 0.0;              // rest length [m]
   Quat b_i = Quat::Identity();  // bond frame in the body frame of i
   Quat b_j = Quat::Identity();  // bond frame in the body frame of j
+  double L0 = 0.0;              // rest length [m]
   double dashpot = 0.0;         // Maxwell dashpot extension e_d [m]
   double plastic_y = 0.0;       // plastic bending rotation theta_p [rad]
   double plastic_z = 0.0;
 };
+static_assert(sizeof(BondState) == 2 * sizeof(Quat) + 4 * sizeof(double),
+              "BondState carries no padding");
 
 // What the law needs to know about the pair at this instant.
 struct BondGeometry {
