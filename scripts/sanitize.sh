@@ -40,7 +40,7 @@ slow=(
   'Pipeline\..*'
   'VirtualTests\..*'
   'NetworkChecks\..*'
-  'ZdCompression\.(StopsAtTheTargetPressure|TheSlowToeKeepsAPressedSheetQuasiStatic|ALoopStoppedAtALowPressureReturnsNoMoreWorkThanItTook|SteppedMovesShrinkWhereTheWebIsMet)'
+  'ZdCompression\.(StopsAtTheTargetPressure|TheSlowToeKeepsAPressedSheetQuasiStatic|ALoopStoppedAtALowPressureReturnsNoMoreWorkThanItTook|SteppedMovesShrinkWhereTheWebIsMet|ALightLoopIsDampedAsTheWebIs)'
   'LooseMat\..*'
   'Relief\.SphereRestsOnePocketDepthLowerOverAPocket'
   'Creping\..*'

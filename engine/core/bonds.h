@@ -29,6 +29,9 @@ struct Bonds {
   std::vector<BondKind> kind;
   std::vector<BondState> state;
   std::vector<std::uint8_t> broken;
+  // Per bond, only once quasi-static damping has sized the dashpots for each pair
+  // (AddBondDamping); empty: every factor 1, and a run without dashpots stores nothing.
+  std::vector<BondDampingFactors> damping_factors;
   std::vector<BeamBondParams> types;  // parameter table
   std::vector<BondBreakEvent> events;
 
@@ -47,7 +50,12 @@ struct Bonds {
     kind.push_back(k);
     state.push_back(s);
     broken.push_back(0);
+    if (!damping_factors.empty()) damping_factors.emplace_back();
     return i.size() - 1;
+  }
+
+  BondDampingFactors DampingFactors(std::size_t b) const {
+    return damping_factors.empty() ? BondDampingFactors{} : damping_factors[b];
   }
 
   std::size_t CountIntact() const {

@@ -24,7 +24,8 @@ std::string DescribeLargestInteraction(const World& w, std::size_t particle) {
     BondState copy = w.bonds.state[b];
     const BondGeometry g{w.cell.Delta(p.x[i], p.x[j]), p.q[i], p.q[j], p.v[j] - p.v[i],
                          p.omega[i], p.omega[j]};
-    const BondResult r = EvaluateBond(g, w.bonds.types[w.bonds.type[b]], copy, 0.0);
+    const BondResult r =
+        EvaluateBond(g, w.bonds.types[w.bonds.type[b]], copy, 0.0, w.bonds.DampingFactors(b));
     consider(r.force_i.norm(), fmt::format("bond {} ({}-{}): |F| = {:.3g} N, |T| = {:.3g} N m", b,
                                            i, j, r.force_i.norm(), r.torque_i.norm()));
   }

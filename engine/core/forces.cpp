@@ -62,6 +62,14 @@ void GatherBondLanes(const World& w, const std::vector<BondLanesType>& types,
   in.plastic_y = Across([&](int l) { return state[l]->plastic_y; });
   in.plastic_z = Across([&](int l) { return state[l]->plastic_z; });
   if (!in.damped) return;
+  if (!bonds.damping_factors.empty()) {
+    // Each bond's own damping, as EvaluateBond forms it: the type's times the bond's factors.
+    const BondDampingFactors* f = bonds.damping_factors.data();
+    const Lanes translation = Across([&](int l) { return double(f[ids[l]].translation); });
+    const Lanes rotation = Across([&](int l) { return double(f[ids[l]].rotation); });
+    in.damping_n = in.damping_n * translation, in.damping_s = in.damping_s * translation;
+    in.damping_rot = in.damping_rot * rotation;
+  }
   Vec3 v_rel[kBondLanes], omega_i[kBondLanes], omega_j[kBondLanes];
   for (int l = 0; l < kBondLanes; ++l) {
     v_rel[l] = p.v[j[l]] - p.v[i[l]];
@@ -142,7 +150,8 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
       const std::int32_t i = bonds.i[b], j = bonds.j[b];
       const BondGeometry g{
           w.cell.Delta(p.x[i], p.x[j]), p.q[i], p.q[j], p.v[j] - p.v[i], p.omega[i], p.omega[j]};
-      const BondResult r = EvaluateBond(g, bonds.types[bonds.type[b]], bonds.state[b], dt);
+      const BondResult r =
+          EvaluateBond(g, bonds.types[bonds.type[b]], bonds.state[b], dt, bonds.DampingFactors(b));
       inelastic += r.dissipated;
       if (r.broken) {
         bonds.broken[b] = 1;

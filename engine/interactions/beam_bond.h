@@ -88,6 +88,14 @@ struct BondState {
 static_assert(sizeof(BondState) == 2 * sizeof(Quat) + 4 * sizeof(double),
               "BondState carries no padding");
 
+// A bond's factors on its type's dashpots (damping_n and damping_s; damping_rot) for its own
+// pair of particles: a type's dashpots are sized for one pair, and a bond between lighter
+// particles needs less to be damped at the same fraction of critical.
+struct BondDampingFactors {
+  float translation = 1.0f;
+  float rotation = 1.0f;
+};
+
 // What the law needs to know about the pair at this instant.
 struct BondGeometry {
   Vec3 d;             // x_j - x_i (minimum image) [m]
@@ -132,9 +140,10 @@ BondState MakeBondState(const Vec3& d, const Quat& q_i, const Quat& q_j, double 
 
 // Evaluates the bond and advances its history (dashpot, plastic rotation) by dt. Pass a
 // copy of the state to evaluate without changing it (dt = 0 also leaves it unchanged).
+// `damping` scales the type's dashpots for this bond's pair.
 // Inline: it runs once per bond per step in the hot loop.
 inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, BondState& s,
-                               double dt) {
+                               double dt, const BondDampingFactors& damping = {}) {
   BondResult r;
   const Quat B_i = g.q_i * s.b_i;
   const Quat B_j = g.q_j * s.b_j;
@@ -211,11 +220,14 @@ inline BondResult EvaluateBond(const BondGeometry& g, const BeamBondParams& p, B
     const Vec3 v_r = g.v_rel - omega_m.cross(g.d);
     const Vec3 axis = R_m.col(0);
     const double v_n = v_r.dot(axis);
-    const Vec3 f_damp = p.damping_n * v_n * axis + p.damping_s * (v_r - v_n * axis);
+    const double c_n = p.damping_n * double(damping.translation);
+    const double c_s = p.damping_s * double(damping.translation);
+    const double c_rot = p.damping_rot * double(damping.rotation);
+    const Vec3 f_damp = c_n * v_n * axis + c_s * (v_r - v_n * axis);
     const Vec3 w_rel = g.omega_j - g.omega_i;
     f_i += f_damp;
-    couple += p.damping_rot * w_rel;
-    r.dissipated += (f_damp.dot(v_r) + p.damping_rot * w_rel.squaredNorm()) * dt;
+    couple += c_rot * w_rel;
+    r.dissipated += (f_damp.dot(v_r) + c_rot * w_rel.squaredNorm()) * dt;
   }
 
   // The force pair f_i, -f_i is offset by d: its moment is shared so that angular momentum

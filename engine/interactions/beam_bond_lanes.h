@@ -143,7 +143,7 @@ inline void SetAllLanesType(BondLanesInput& in, const BondLanesType& p) {
 // Puts one bond into lane l of `in`. `damped` and `viscous` are or-ed in: clear them before
 // the first lane.
 inline void SetLane(BondLanesInput& in, int l, const BondGeometry& g, const BondState& s,
-                    const BondLanesType& p) {
+                    const BondLanesType& p, const BondDampingFactors& damping = {}) {
   in.d.x[l] = g.d.x(), in.d.y[l] = g.d.y(), in.d.z[l] = g.d.z();
   for (auto [lanes, q] :
        {std::pair{&in.q_i, &g.q_i}, {&in.q_j, &g.q_j}, {&in.b_i, &s.b_i}, {&in.b_j, &s.b_j}}) {
@@ -156,6 +156,10 @@ inline void SetLane(BondLanesInput& in, int l, const BondGeometry& g, const Bond
   in.L0[l] = s.L0, in.dashpot[l] = s.dashpot;
   in.plastic_y[l] = s.plastic_y, in.plastic_z[l] = s.plastic_z;
   SetLaneType(in, l, p);
+  // The bond's own damping, as EvaluateBond forms it.
+  in.damping_n[l] *= double(damping.translation);
+  in.damping_s[l] *= double(damping.translation);
+  in.damping_rot[l] *= double(damping.rotation);
 }
 
 namespace lanes {

@@ -240,6 +240,11 @@ void WriteSnapshot(const World& w, const std::string& path, const PointFields& f
                      out[0] = b.state[k].plastic_y;
                      out[1] = b.state[k].plastic_z;
                    }), 2);
+    if (!b.damping_factors.empty())
+      f.WriteDoubles("bonds/damping_factors", BondRows<double>(nb, 2, [&](std::size_t k, auto out) {
+                       out[0] = b.damping_factors[k].translation;
+                       out[1] = b.damping_factors[k].rotation;
+                     }), 2);
     std::vector<double> types;
     for (const BeamBondParams& t : b.types) {
       const std::vector<double> row = TypeRow(t);
@@ -316,7 +321,9 @@ World ReadSnapshot(const std::string& path) {
   p.fibre.assign(fibre.begin(), fibre.end());
   p.force.assign(n, Vec3::Zero());
   p.torque.assign(n, Vec3::Zero());
-  if (p.v.size() != n || p.q.size() != n || p.radius.size() != n || p.fibre.size() != n)
+  if (p.v.size() != n || p.omega.size() != n || p.q.size() != n || p.radius.size() != n ||
+      p.mass.size() != n || p.inertia.size() != n || p.inv_mass.size() != n ||
+      p.inv_inertia.size() != n || p.fibre.size() != n)
     throw Error(fmt::format("{}: particle arrays have inconsistent lengths", path));
 
   Bonds& b = w.bonds;
@@ -332,7 +339,16 @@ World ReadSnapshot(const std::string& path) {
   const auto b_j = UnflattenQuats(f.ReadDoubles("bonds/b_j", 4));
   const auto dashpot = f.ReadDoubles("bonds/dashpot", 1);
   const auto plastic = f.ReadDoubles("bonds/plastic", 2);
-  for (std::size_t k = 0; k < L0.size(); ++k) {
+  // Only a network whose dashpots were sized per bond holds damping factors.
+  const std::vector<double> damping = f.Exists("bonds/damping_factors")
+                                          ? f.ReadDoubles("bonds/damping_factors", 2)
+                                          : std::vector<double>{};
+  const std::size_t nb = L0.size();
+  if (ij.size() != 2 * nb || type.size() != nb || kind.size() != nb || broken.size() != nb ||
+      b_i.size() != nb || b_j.size() != nb || dashpot.size() != nb || plastic.size() != 2 * nb ||
+      (!damping.empty() && damping.size() != 2 * nb))
+    throw Error(fmt::format("{}: bond arrays have inconsistent lengths", path));
+  for (std::size_t k = 0; k < nb; ++k) {
     BondState s;
     s.L0 = L0[k];
     s.b_i = b_i[k];
@@ -348,6 +364,9 @@ World ReadSnapshot(const std::string& path) {
           static_cast<std::int32_t>(type[k]), static_cast<BondKind>(kind[k]), s);
     b.broken.back() = static_cast<std::uint8_t>(broken[k]);
   }
+  for (std::size_t k = 0; k < damping.size() / 2; ++k)
+    b.damping_factors.push_back(
+        {static_cast<float>(damping[2 * k]), static_cast<float>(damping[2 * k + 1])});
   const auto events = f.ReadDoubles("bonds/events", 10);
   for (std::size_t k = 0; k < events.size() / 10; ++k) {
     const double* e = events.data() + 10 * k;

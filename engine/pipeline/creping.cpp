@@ -89,6 +89,7 @@ void DropAnchors(World& w, std::size_t n, std::size_t bonds, std::size_t types) 
   b.kind.resize(bonds);
   b.state.resize(bonds);
   b.broken.resize(bonds);
+  if (!b.damping_factors.empty()) b.damping_factors.resize(bonds);
   b.types.resize(types);
   std::erase_if(b.events, [&](const BondBreakEvent& e) {
     return e.bond >= static_cast<std::int32_t>(bonds);
@@ -147,6 +148,7 @@ void RelaxCrepedSheet(Network& net, const SheetSpec& sheet, const CrepingSetting
         "creping.relax_max_steps", out.relax_steps, kinetic / energy, change, window));
   RestoreMasses(w, masses);
   w.bonds.types = bond_types;
+  w.bonds.damping_factors.clear();
   w.physics.drag = false;
   for (std::size_t i = 0; i < w.particles.size(); ++i) {
     w.particles.v[i].setZero();

@@ -171,6 +171,8 @@ std::size_t KeepParticles(Network& net, const std::vector<std::uint8_t>& keep) {
     kept.Add(new_index[b.i[k]], new_index[b.j[k]], b.type[k], b.kind[k], b.state[k]);
     kept.broken.back() = b.broken[k];
   }
+  if (!b.damping_factors.empty())
+    for (std::int32_t k : bond_order) kept.damping_factors.push_back(b.damping_factors[k]);
   for (BondBreakEvent e : b.events) {
     if (new_bond[e.bond] == kGone) continue;
     e.bond = new_bond[e.bond];

@@ -76,12 +76,28 @@ void AddBondDamping(World& w, double ratio) {
   }
   m /= static_cast<double>(p.size());
   inertia /= static_cast<double>(p.size());
-  // Two particles of mean mass on a spring k: reduced mass m/2, critical damping 2 sqrt(k m/2).
+  // The types are sized for two particles of mean mass on a spring k: reduced mass m/2,
+  // critical damping 2 sqrt(k m/2).
   for (BeamBondParams& t : w.bonds.types) {
     t.damping_n = std::max(t.damping_n, 2.0 * ratio * std::sqrt(0.5 * m * t.k_n));
     t.damping_s = std::max(t.damping_s, 2.0 * ratio * std::sqrt(0.5 * m * t.k_s));
     t.damping_rot =
         std::max(t.damping_rot, 2.0 * ratio * std::sqrt(0.5 * inertia * std::max(t.k_b, t.k_t)));
+  }
+  // Each bond for its own pair: critical damping goes as the square root of the reduced mass
+  // 1 / (1/m_i + 1/m_j), a pinned end counting as infinitely heavy. Sized on the mean pair
+  // alone, a light fibre's bonds were damped at several times `ratio`, and the explicit step
+  // that holds for its stiffness and mass went unstable under that damping.
+  const auto factor = [](double inverse_i, double inverse_j, double mean) {
+    const double inverse = inverse_i + inverse_j;
+    return inverse > 0.0 ? static_cast<float>(std::sqrt(2.0 / (inverse * mean))) : 1.0f;
+  };
+  Bonds& bonds = w.bonds;
+  bonds.damping_factors.resize(bonds.size());
+  for (std::size_t b = 0; b < bonds.size(); ++b) {
+    const std::int32_t i = bonds.i[b], j = bonds.j[b];
+    bonds.damping_factors[b] = {factor(p.inv_mass[i], p.inv_mass[j], m),
+                                factor(p.inv_inertia[i], p.inv_inertia[j], inertia)};
   }
 }
 
@@ -322,7 +338,8 @@ Mat3 InteractionVirial(const World& w) {
     BondState copy = w.bonds.state[b];
     const BondGeometry g{w.cell.Delta(p.x[i], p.x[j]), p.q[i], p.q[j], p.v[j] - p.v[i],
                          p.omega[i], p.omega[j]};
-    const BondResult r = EvaluateBond(g, w.bonds.types[w.bonds.type[b]], copy, 0.0);
+    const BondResult r =
+        EvaluateBond(g, w.bonds.types[w.bonds.type[b]], copy, 0.0, w.bonds.DampingFactors(b));
     if (!r.broken) W += g.d * r.force_i.transpose();
   }
   if (!w.physics.contacts) return W;

@@ -9,7 +9,8 @@
 //    inertia grows, which the measured kinetic/work ratio guards. The critical time step
 //    grows by sqrt(M).
 //  - Bond damping: each bond gets dashpots in its six modes at a fraction
-//    bond_damping_ratio of critical damping of a bond between two particles of mean mass.
+//    bond_damping_ratio of critical damping of its own pair of particles (reduced mass and
+//    moment of inertia), so a light fibre is damped at the same fraction as a heavy one.
 //    They act on relative motion only (zero for rigid motion) and take out ringing; their
 //    force at the loading rate is negligible against the elastic one (measured as part of
 //    the guard) and their dissipation is booked with the bond losses.
@@ -75,7 +76,8 @@ std::string ValidateLoading(int samples, std::int64_t max_steps, const MaterialS
 // the switches applied to every bond type. Contacts stay as the network had them.
 void ApplyTestPhysics(Network& net, const MaterialSwitches& s);
 
-// Adds bond dashpots (see the header comment) for the current masses.
+// Adds bond dashpots (see the header comment) for the current masses: the types' damping
+// for the mean pair, and each bond's factors (Bonds::damping_factors) for its own.
 void AddBondDamping(World& w, double ratio);
 // The damping of quasi-static control: bond dashpots and local damping as `s` sets them.
 void ApplyQuasiStaticDamping(World& w, const QuasiStaticSettings& s);

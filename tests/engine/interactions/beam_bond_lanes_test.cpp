@@ -29,10 +29,11 @@ Vec3 RandomVector(std::mt19937& rng, double scale) {
 }
 
 // A bond made at rest along a random direction, then strained by `strain` (relative
-// displacement and rotations of that order) and set moving.
+// displacement and rotations of that order) and set moving, with damping factors of its own.
 struct Case {
   BondGeometry g;
   BondState s;
+  BondDampingFactors damping;
 };
 
 Case RandomCase(std::mt19937& rng, double strain) {
@@ -41,6 +42,9 @@ Case RandomCase(std::mt19937& rng, double strain) {
   const Vec3 d0 = kL * RandomVector(rng, 1.0).normalized();
   c.s = MakeBondState(d0, q_i0, q_j0);
   c.s.dashpot = 1e-3 * strain * kL;
+  // The bond's own damping factors (a pair lighter or heavier than its type's).
+  std::uniform_real_distribution<float> factor(0.3f, 3.0f);
+  c.damping = {factor(rng), factor(rng)};
   c.g.d = d0 + RandomVector(rng, strain * kL);
   c.g.q_i = RandomRotation(rng, strain) * q_i0;
   c.g.q_j = RandomRotation(rng, strain) * q_j0;
@@ -54,7 +58,7 @@ void Gather(const std::vector<Case>& cases, const std::vector<BeamBondParams>& p
             BondLanesInput& in) {
   in.damped = in.viscous = false;
   for (int l = 0; l < kBondLanes; ++l)
-    SetLane(in, l, cases[l].g, cases[l].s, LanesTypeOf(params[l], kDt));
+    SetLane(in, l, cases[l].g, cases[l].s, LanesTypeOf(params[l], kDt), cases[l].damping);
 }
 
 BeamBondParams Elastic() { return BeamBondParams::FromBeam(kE, kG, kR, kL); }
@@ -98,7 +102,7 @@ TEST(BeamBondLanes, EachLaneEqualsEvaluateBondBitForBit) {
       EvaluateBondLanes(in, kDt, lanes);
       for (int l = 0; l < kBondLanes; ++l) {
         BondState copy = cases[l].s;
-        const BondResult r = EvaluateBond(cases[l].g, params[l], copy, kDt);
+        const BondResult r = EvaluateBond(cases[l].g, params[l], copy, kDt, cases[l].damping);
         const double theta2 = RotationVector((cases[l].g.q_i * cases[l].s.b_i).conjugate() *
                                              (cases[l].g.q_j * cases[l].s.b_j))
                                   .squaredNorm();
@@ -236,6 +240,7 @@ TEST(BeamBondLanes, TheBondLoopEqualsEvaluateBondInOrder) {
                               : b % 7 == 3  ? types[4]
                                             : types[b % 4];
     w.bonds.Add(i, j, type, BondKind::kFibreFibre, c.s);
+    w.bonds.damping_factors.push_back(c.damping);
   }
   w.bonds.broken[7] = 1;
   w.settings.dt = kDt;
@@ -251,8 +256,9 @@ TEST(BeamBondLanes, TheBondLoopEqualsEvaluateBondInOrder) {
                          p.v[j] - p.v[i],
                          p.omega[i],
                          p.omega[j]};
-    const BondResult r = EvaluateBond(g, reference.bonds.types[reference.bonds.type[b]],
-                                      reference.bonds.state[b], w.settings.dt);
+    const BondResult r =
+        EvaluateBond(g, reference.bonds.types[reference.bonds.type[b]], reference.bonds.state[b],
+                     w.settings.dt, reference.bonds.DampingFactors(b));
     if (r.broken) {
       reference.bonds.broken[b] = 1;
       continue;

@@ -185,5 +185,32 @@ TEST(BeamBond, PlasticBendingCapsTheMoment) {
   EXPECT_GT(r.dissipated, 0.0);
 }
 
+// A bond's damping factors multiply its type's dashpots: factors (2, 3) on a type's damping
+// give the forces, torques and losses of a type damped twice (translation) and three times
+// (rotation) as much.
+TEST(BeamBond, TheBondsDampingFactorsScaleItsTypesDashpots) {
+  std::mt19937 rng(3);
+  Pair p = DeformedPair(rng, 1e-3);
+  const BondGeometry g{p.x_j - p.x_i, p.q_i, p.q_j, Vec3(1e-3, -2e-3, 5e-4), Vec3(10, -30, 20),
+                       Vec3(-40, 5, 15)};
+  BeamBondParams type = Fibre();
+  type.damping_n = 2e-6, type.damping_s = 1e-6, type.damping_rot = 3e-15;
+  BondState scaled = p.state;
+  BeamBondParams heavier = type;
+  heavier.damping_n *= 2.0, heavier.damping_s *= 2.0, heavier.damping_rot *= 3.0;
+  BondState plain = p.state;
+  const BondResult a = EvaluateBond(g, type, scaled, 1e-9, {2.0f, 3.0f});
+  const BondResult b = EvaluateBond(g, heavier, plain, 1e-9);
+  BondState unscaled = p.state;
+  const BondResult c = EvaluateBond(g, type, unscaled, 1e-9);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_DOUBLE_EQ(a.force_i[k], b.force_i[k]);
+    EXPECT_DOUBLE_EQ(a.torque_i[k], b.torque_i[k]);
+    EXPECT_DOUBLE_EQ(a.torque_j[k], b.torque_j[k]);
+  }
+  EXPECT_DOUBLE_EQ(a.dissipated, b.dissipated);
+  EXPECT_GT(std::abs(a.dissipated - c.dissipated), 0.5 * c.dissipated);
+}
+
 }  // namespace
 }  // namespace fibrenet

@@ -8,6 +8,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/simulation.h"
+#include "engine/io/hdf5_file.h"
 
 namespace fibrenet {
 namespace {
@@ -66,6 +67,8 @@ TEST(Snapshot, RoundTripKeepsEveryField) {
   sim.Prepare();
   sim.Run(3000);
   w.bonds.broken[3] = 1;  // a broken bond must come back broken
+  w.bonds.damping_factors.resize(w.bonds.size());
+  w.bonds.damping_factors[5] = {0.4f, 2.5f};
   const std::string path = TempPath("fibrenet_roundtrip.h5");
   std::vector<double> field(w.particles.size(), 1.5);
   io::WriteSnapshot(w, path, {{"strain_energy", field}});
@@ -85,6 +88,8 @@ TEST(Snapshot, RoundTripKeepsEveryField) {
     EXPECT_EQ(r.bonds.state[b].b_i.coeffs(), w.bonds.state[b].b_i.coeffs());
     EXPECT_EQ(r.bonds.state[b].dashpot, w.bonds.state[b].dashpot);
     EXPECT_EQ(r.bonds.state[b].plastic_y, w.bonds.state[b].plastic_y);
+    EXPECT_EQ(r.bonds.DampingFactors(b).translation, w.bonds.DampingFactors(b).translation);
+    EXPECT_EQ(r.bonds.DampingFactors(b).rotation, w.bonds.DampingFactors(b).rotation);
     EXPECT_EQ(r.bonds.broken[b], w.bonds.broken[b]);
   }
   EXPECT_EQ(r.bonds.types[0].maxwell_tau, w.bonds.types[0].maxwell_tau);
@@ -120,6 +125,19 @@ TEST(Snapshot, ContinuingFromASnapshotMatchesAnUninterruptedRun) {
     ASSERT_EQ(a.particles.x[i], b.particles.x[i]) << "particle " << i;
     ASSERT_EQ(a.particles.omega[i], b.particles.omega[i]) << "particle " << i;
   }
+}
+
+// A network whose dashpots were never sized per bond stores no damping factors, and reads
+// back without them (every factor 1), as a snapshot written before they existed does.
+TEST(Snapshot, ANetworkWithoutDampingFactorsStoresNone) {
+  const World w = FallingFibres();
+  const std::string path = TempPath("fibrenet_without_factors.h5");
+  io::WriteSnapshot(w, path);
+  EXPECT_FALSE(io::Hdf5File(path, io::Hdf5File::Mode::kRead).Exists("bonds/damping_factors"));
+  const World r = io::ReadSnapshot(path);
+  ASSERT_EQ(r.bonds.size(), w.bonds.size());
+  EXPECT_TRUE(r.bonds.damping_factors.empty());
+  EXPECT_EQ(r.bonds.DampingFactors(2).translation, 1.0f);
 }
 
 TEST(Snapshot, MissingFileIsAnInputError) {

@@ -3,6 +3,7 @@
 // the bookkeeping (Gini, top share, CSV curves) and the settings' messages.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -13,6 +14,8 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/error.h"
+#include "engine/core/quaternion.h"
+#include "engine/core/simulation.h"
 #include "engine/pipeline/compression_test.h"
 #include "engine/pipeline/curves.h"
 #include "engine/pipeline/sheet_bending.h"
@@ -133,6 +136,77 @@ TEST(Settings, MessagesNameTheKeyAndTheRange) {
 
 // n E A / W: the grips hold each fibre at both ends and the free span is the chain between
 // them, so the strip is exactly n springs of stiffness E A / span in parallel.
+// Two free bonded pairs, one eight times lighter than the other, ringing in stretch and twist.
+struct RingingPairs {
+  World w;
+  double L0 = 0.0;
+};
+RingingPairs MakeRingingPairs() {
+  RingingPairs r;
+  World& w = r.w;
+  w.cell.lo = Vec3(-1e-3, -1e-3, -1e-3);
+  w.cell.hi = Vec3(1e-3, 1e-3, 1e-3);
+  const std::int32_t type = w.bonds.AddType(BeamBondParams::FromBeam(kE, kG, 0.5 * kD, kD));
+  r.L0 = kD;
+  for (int pair = 0; pair < 2; ++pair) {
+    const double m = pair == 0 ? 1e-12 : 0.125e-12, y = 200e-6 * pair;
+    const auto i = static_cast<std::int32_t>(w.particles.Add(Vec3(0, y, 0), 0.5 * kD, m, pair));
+    const auto j = static_cast<std::int32_t>(w.particles.Add(Vec3(kD, y, 0), 0.5 * kD, m, pair));
+    w.bonds.Add(i, j, type, BondKind::kFibre,
+                MakeBondState(Vec3(kD, 0, 0), w.particles.q[i], w.particles.q[j]));
+    // Stretching and twisting apart.
+    w.particles.v[i] = Vec3(-1e-3, 0, 0), w.particles.v[j] = Vec3(1e-3, 0, 0);
+    w.particles.omega[i] = Vec3(-10, 0, 0), w.particles.omega[j] = Vec3(10, 0, 0);
+  }
+  return r;
+}
+
+// The damping ratio of a free ringing from its logarithmic decrement over `periods` periods:
+// the first and the last of periods + 1 successive peaks of `amplitude`.
+double RingingDampingRatio(const std::vector<double>& amplitude, int periods) {
+  std::vector<double> peaks;
+  for (std::size_t k = 1; k + 1 < amplitude.size() && peaks.size() <= std::size_t(periods); ++k)
+    if (amplitude[k] > amplitude[k - 1] && amplitude[k] >= amplitude[k + 1])
+      peaks.push_back(amplitude[k]);
+  if (peaks.size() <= std::size_t(periods)) return 0.0;
+  const double delta = std::log(peaks.front() / peaks.back()) / periods;
+  return delta / std::sqrt(4.0 * kPi * kPi + delta * delta);
+}
+
+// The quasi-static dashpots damp each bond at the set fraction of its own critical damping:
+// a pair eight times lighter than another rings down at the same ratio in stretch (its
+// logarithmic decrement), and in twist at the ratio that the type's rotational dashpot
+// gives (sized on the stiffer of bending and twist).
+TEST(QuasiStaticDamping, EachBondIsDampedAtTheRatioOfItsOwnPair) {
+  RingingPairs pairs = MakeRingingPairs();
+  World& w = pairs.w;
+  const double ratio = 0.1;
+  AddBondDamping(w, ratio);
+  w.settings.safety = 0.05;  // peaks sampled finely enough to read their heights
+  Simulation sim(w);
+  sim.Prepare();
+  std::vector<double> stretch[2], twist[2];
+  for (int step = 0; step < 20000; ++step) {
+    sim.Step();
+    for (int pair = 0; pair < 2; ++pair) {
+      const Particles& p = w.particles;
+      const int i = 2 * pair, j = i + 1;
+      stretch[pair].push_back((p.x[j] - p.x[i]).norm() - pairs.L0);
+      twist[pair].push_back(RotationVector(p.q[i].conjugate() * p.q[j]).x());
+    }
+  }
+  const BeamBondParams& type = w.bonds.types[0];
+  const double twist_ratio = ratio * std::sqrt(std::max(type.k_b, type.k_t) / type.k_t);
+  for (int pair = 0; pair < 2; ++pair) {
+    const double zeta = RingingDampingRatio(stretch[pair], 3);
+    const double zeta_twist = RingingDampingRatio(twist[pair], 3);
+    std::printf("pair %d: stretch %.4f (set %.4f), twist %.4f (set %.4f)\n", pair, zeta, ratio,
+                zeta_twist, twist_ratio);
+    EXPECT_NEAR(zeta / ratio, 1.0, 0.05) << "pair " << pair;
+    EXPECT_NEAR(zeta_twist / twist_ratio, 1.0, 0.05) << "pair " << pair;
+  }
+}
+
 TEST(TensileTest, ParallelFibresGiveTheExactStripStiffness) {
   const int n = 5;
   const Network net = ParallelFibres(n);
