@@ -45,6 +45,9 @@ TEST(KeepParticles, SplitsFibresAndKeepsTheBondsWhoseEndsStay) {
   w.bonds.events.push_back({.step = 5, .bond = 7});
   w.bonds.events.push_back({.step = 6, .bond = 15});  // the bond 2-9, which stays
   w.bonds.events.push_back({.step = 7, .bond = 16});  // the bond 6-17, which goes
+  // Each bond's damping factors name it, to follow it to its new id.
+  for (std::size_t b = 0; b < w.bonds.size(); ++b)
+    w.bonds.damping_factors.push_back({float(b), float(b) + 0.5f});
   std::vector<std::uint8_t> keep(18, 1);
   for (int i : {6, 7, 8}) keep[i] = 0;
   for (int i = 12; i < 18; ++i) keep[i] = 0;
@@ -71,6 +74,14 @@ TEST(KeepParticles, SplitsFibresAndKeepsTheBondsWhoseEndsStay) {
   ASSERT_EQ(w.bonds.events.size(), 1u);
   EXPECT_EQ(w.bonds.events[0].step, 6);
   EXPECT_EQ(w.bonds.events[0].bond, 7);
+  // The kept bonds' damping factors: fibre 0's five, fibre 1's kept pair (bonds 8 and 9),
+  // then the fibre-fibre bond 15.
+  ASSERT_EQ(w.bonds.damping_factors.size(), 8u);
+  const float was[8] = {0, 1, 2, 3, 4, 8, 9, 15};
+  for (int b = 0; b < 8; ++b) {
+    EXPECT_EQ(w.bonds.damping_factors[b].translation, was[b]) << "bond " << b;
+    EXPECT_EQ(w.bonds.damping_factors[b].rotation, was[b] + 0.5f) << "bond " << b;
+  }
 }
 
 TEST(KeepParticles, ARemovedMiddleParticleLeavesTwoFibresAndABrokenBondCarriesOver) {
