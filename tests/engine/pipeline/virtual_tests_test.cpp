@@ -1,6 +1,7 @@
 // The virtual-test rig on strips whose answer is known in closed form: parallel straight
 // fibres along the load (tensile stiffness n E A / W, pure-bending stiffness n E I / W), plus
-// the bookkeeping (Gini, top share, CSV curves) and the settings' messages.
+// the bookkeeping (Gini, top share, CSV curves), the settings' messages, and the quasi-static
+// dashpots against a ringing pair's logarithmic decrement.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -134,8 +135,6 @@ TEST(Settings, MessagesNameTheKeyAndTheRange) {
   EXPECT_THROW(RunTensileTest(ParallelFibres(2), t), InputError);
 }
 
-// n E A / W: the grips hold each fibre at both ends and the free span is the chain between
-// them, so the strip is exactly n springs of stiffness E A / span in parallel.
 // Two free bonded pairs, one eight times lighter than the other, ringing in stretch and twist.
 struct RingingPairs {
   World w;
@@ -207,6 +206,8 @@ TEST(QuasiStaticDamping, EachBondIsDampedAtTheRatioOfItsOwnPair) {
   }
 }
 
+// n E A / W: the grips hold each fibre at both ends and the free span is the chain between
+// them, so the strip is exactly n springs of stiffness E A / span in parallel.
 TEST(TensileTest, ParallelFibresGiveTheExactStripStiffness) {
   const int n = 5;
   const Network net = ParallelFibres(n);
