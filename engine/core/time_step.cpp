@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -16,6 +17,14 @@ TimeStepInfo CriticalTimeStep(const World& w) {
   // Upper bounds on omega^2 per particle, translation and rotation.
   std::vector<double> trans(n, 0.0), rot(n, 0.0);
   std::vector<std::int32_t> worst_bond(n, -1);
+  // The most heavily damped dashpot mode of any bond.
+  double zeta_max = 0.0;
+  std::size_t zeta_bond = 0;
+  const char* zeta_mode = "";
+  auto zeta_of = [](double c, double k, double inv_a, double inv_b) {
+    const double inv = inv_a + inv_b;  // 1 / reduced mass (or inertia); a pinned end adds 0
+    return c > 0.0 && k > 0.0 && inv > 0.0 ? 0.5 * c / std::sqrt(k / inv) : 0.0;
+  };
   auto inv_sqrt = [](double a, double b) { return (a > 0.0 && b > 0.0) ? 1.0 / std::sqrt(a * b) : 0.0; };
   for (std::size_t b = 0; b < w.bonds.size(); ++b) {
     if (w.bonds.broken[b]) continue;
@@ -25,6 +34,25 @@ TimeStepInfo CriticalTimeStep(const World& w) {
     const double k_rot = std::max(k.k_b, k.k_t);
     const double k_sl = 0.5 * k.k_s * L;        // shear-rotation coupling
     const double k_sll = 0.25 * k.k_s * L * L;  // shear contribution to rotation
+    if (k.damping_n > 0.0 || k.damping_s > 0.0 || k.damping_rot > 0.0) {
+      const BondDampingFactors f = w.bonds.DampingFactors(b);
+      const std::int32_t i = w.bonds.i[b], j = w.bonds.j[b];
+      const double c_n = k.damping_n * double(f.translation), c_s = k.damping_s * double(f.translation);
+      const double c_rot = k.damping_rot * double(f.rotation);
+      const double inv_m[2] = {p.inv_mass[i], p.inv_mass[j]};
+      const double inv_I[2] = {p.inv_inertia[i], p.inv_inertia[j]};
+      const std::pair<double, const char*> modes[4] = {
+          {zeta_of(c_n, k.k_n, inv_m[0], inv_m[1]), "stretch"},
+          {zeta_of(c_s, k.k_s, inv_m[0], inv_m[1]), "shear"},
+          {zeta_of(c_rot, k.k_t, inv_I[0], inv_I[1]), "twist"},
+          {zeta_of(c_rot, k.k_b, inv_I[0], inv_I[1]), "bending"}};
+      for (const auto& [zeta, mode] : modes)
+        if (zeta > zeta_max) {
+          zeta_max = zeta;
+          zeta_bond = b;
+          zeta_mode = mode;
+        }
+    }
     const std::int32_t ends[2] = {w.bonds.i[b], w.bonds.j[b]};
     for (int e = 0; e < 2; ++e) {
       const std::int32_t a = ends[e], o = ends[1 - e];
@@ -69,6 +97,11 @@ TimeStepInfo CriticalTimeStep(const World& w) {
     }
   }
   info.dt_crit = omega2_max > 0.0 ? 2.0 / std::sqrt(omega2_max) : 1e-3;
+  info.dt_damped = info.dt_crit * (std::sqrt(1.0 + zeta_max * zeta_max) - zeta_max);
+  info.damped_limited_by =
+      zeta_max > 0.0 ? fmt::format("the {} dashpot of bond {}, {:.3g} of critical", zeta_mode,
+                                   zeta_bond, zeta_max)
+                     : info.limited_by;
   if (w.physics.drag && w.physics.drag_coefficient > 0.0 && n > 0) {
     const double m_min = *std::min_element(p.mass.begin(), p.mass.end());
     const double dt_drag = 2.0 * m_min / w.physics.drag_coefficient;
@@ -76,21 +109,30 @@ TimeStepInfo CriticalTimeStep(const World& w) {
       info.dt_crit = dt_drag;
       info.limited_by = "linear drag of the lightest particle";
     }
+    if (dt_drag < info.dt_damped) {
+      info.dt_damped = dt_drag;
+      info.damped_limited_by = "linear drag of the lightest particle";
+    }
   }
   return info;
 }
 
 std::string ChooseTimeStep(World& w) {
   const TimeStepInfo info = CriticalTimeStep(w);
-  const double allowed = w.settings.safety * info.dt_crit;
+  const double allowed = std::min(w.settings.safety * info.dt_crit, info.dt_damped);
   if (w.settings.dt <= 0.0) {
     w.settings.dt = allowed;
     return {};
   }
   if (w.settings.dt <= allowed) return {};
-  const std::string what = fmt::format(
-      "time step {:.4g} s exceeds safety {} x critical time step {:.4g} s (limited by {})",
-      w.settings.dt, w.settings.safety, info.dt_crit, info.limited_by);
+  const std::string what =
+      info.dt_damped < w.settings.safety * info.dt_crit
+          ? fmt::format("time step {:.4g} s exceeds the stability limit with the bond dashpots, "
+                        "{:.4g} s (limited by {})",
+                        w.settings.dt, info.dt_damped, info.damped_limited_by)
+          : fmt::format(
+                "time step {:.4g} s exceeds safety {} x critical time step {:.4g} s (limited by {})",
+                w.settings.dt, w.settings.safety, info.dt_crit, info.limited_by);
   if (w.settings.policy == TimeStepPolicy::kRefuse)
     throw RunError(what + "; set dt <= " + fmt::format("{:.4g}", allowed) + " s");
   w.settings.dt = allowed;

@@ -313,6 +313,31 @@ TEST(TimeStep, AStepWithinTheLimitIsKeptAndZeroChoosesOne) {
   EXPECT_DOUBLE_EQ(automatic.settings.dt, automatic.settings.safety * dt_crit);
 }
 
+// A stretch dashpot at zeta of critical on the pair's reduced mass scales the limit by
+// sqrt(1 + zeta^2) - zeta, the damped oscillator's under symplectic Euler; the time step
+// keeps below it whatever the safety. Without dashpots the limit is dt_crit itself.
+TEST(TimeStep, BondDashpotsLowerTheLimitAsForADampedOscillator) {
+  World w = ChainWorld();
+  const TimeStepInfo undamped = CriticalTimeStep(w);
+  EXPECT_EQ(undamped.dt_damped, undamped.dt_crit);
+  const double m_reduced = 0.5 * 8e-12;
+  for (double zeta : {0.1, 1.0}) {
+    World damped = ChainWorld();
+    BeamBondParams& t = damped.bonds.types[0];
+    t.damping_n = 2.0 * zeta * std::sqrt(t.k_n * m_reduced);
+    const TimeStepInfo info = CriticalTimeStep(damped);
+    EXPECT_DOUBLE_EQ(info.dt_crit, undamped.dt_crit);
+    const double limit = undamped.dt_crit * (std::sqrt(1.0 + zeta * zeta) - zeta);
+    EXPECT_NEAR(info.dt_damped, limit, 1e-12 * limit) << zeta;
+    EXPECT_NE(info.damped_limited_by.find("stretch dashpot of bond"), std::string::npos)
+        << info.damped_limited_by;
+    damped.settings.safety = 0.9;
+    Simulation sim(damped);
+    EXPECT_EQ(sim.Prepare(), "");
+    EXPECT_DOUBLE_EQ(damped.settings.dt, std::min(0.9 * undamped.dt_crit, limit)) << zeta;
+  }
+}
+
 TEST(TimeStep, HardCoresOfContactsAndSurfacesShortenTheStep) {
   World w;
   w.cell.hi = Vec3(1e-3, 1e-3, 1e-3);
