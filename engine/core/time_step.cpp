@@ -21,8 +21,9 @@ TimeStepInfo CriticalTimeStep(const World& w) {
   double zeta_max = 0.0;
   std::size_t zeta_bond = 0;
   const char* zeta_mode = "";
-  auto zeta_of = [](double c, double k, double inv_a, double inv_b) {
-    const double inv = inv_a + inv_b;  // 1 / reduced mass (or inertia); a pinned end adds 0
+  // `inv`: 1 / the pair's reduced mass (or inertia), the ends' inverses summed; a pinned end
+  // adds 0.
+  auto zeta_of = [](double c, double k, double inv) {
     return c > 0.0 && k > 0.0 && inv > 0.0 ? 0.5 * c / std::sqrt(k / inv) : 0.0;
   };
   auto inv_sqrt = [](double a, double b) { return (a > 0.0 && b > 0.0) ? 1.0 / std::sqrt(a * b) : 0.0; };
@@ -39,13 +40,12 @@ TimeStepInfo CriticalTimeStep(const World& w) {
       const std::int32_t i = w.bonds.i[b], j = w.bonds.j[b];
       const double c_n = k.damping_n * double(f.translation), c_s = k.damping_s * double(f.translation);
       const double c_rot = k.damping_rot * double(f.rotation);
-      const double inv_m[2] = {p.inv_mass[i], p.inv_mass[j]};
-      const double inv_I[2] = {p.inv_inertia[i], p.inv_inertia[j]};
-      const std::pair<double, const char*> modes[4] = {
-          {zeta_of(c_n, k.k_n, inv_m[0], inv_m[1]), "stretch"},
-          {zeta_of(c_s, k.k_s, inv_m[0], inv_m[1]), "shear"},
-          {zeta_of(c_rot, k.k_t, inv_I[0], inv_I[1]), "twist"},
-          {zeta_of(c_rot, k.k_b, inv_I[0], inv_I[1]), "bending"}};
+      const double inv_m = p.inv_mass[i] + p.inv_mass[j];
+      const double inv_I = p.inv_inertia[i] + p.inv_inertia[j];
+      const std::pair<double, const char*> modes[4] = {{zeta_of(c_n, k.k_n, inv_m), "stretch"},
+                                                       {zeta_of(c_s, k.k_s, inv_m), "shear"},
+                                                       {zeta_of(c_rot, k.k_t, inv_I), "twist"},
+                                                       {zeta_of(c_rot, k.k_b, inv_I), "bending"}};
       for (const auto& [zeta, mode] : modes)
         if (zeta > zeta_max) {
           zeta_max = zeta;
