@@ -11,26 +11,6 @@ namespace fibrenet {
 
 namespace {
 
-// Lanes l = 0..3 of value(l), built as whole vectors: four values stored one by one and read
-// back as a vector would stall on the store forwarding.
-template <class Value>
-Lanes Across(const Value& value) {
-  return Lanes{value(0), value(1), value(2), value(3)};
-}
-
-void GatherQuatLanes(const Quat* const (&q)[kBondLanes], QuatLanes& out) {
-  out.w = Across([&](int l) { return q[l]->w(); });
-  out.x = Across([&](int l) { return q[l]->x(); });
-  out.y = Across([&](int l) { return q[l]->y(); });
-  out.z = Across([&](int l) { return q[l]->z(); });
-}
-
-void GatherVec3Lanes(const Vec3 (&v)[kBondLanes], Vec3Lanes& out) {
-  out.x = Across([&](int l) { return v[l].x(); });
-  out.y = Across([&](int l) { return v[l].y(); });
-  out.z = Across([&](int l) { return v[l].z(); });
-}
-
 // Gathers the four bonds ids[0..3] into the lanes' input: what SetLane puts in each lane.
 // The motions (relative velocity, spins) only where a type damps: the law reads them for the
 // damping alone.

@@ -8,6 +8,7 @@
 #include "engine/core/error.h"
 #include "engine/core/float_mode.h"
 #include "engine/core/quaternion.h"
+#include "engine/core/rotation_lanes.h"
 #include "engine/core/time_step.h"
 
 namespace fibrenet {
@@ -111,30 +112,38 @@ void Simulation::Integrate() {
   if (ph.local_damping > 0.0) ApplyLocalDamping();
   double work_gravity = 0.0, work_drag = 0.0, work_applied = 0.0;
   std::int64_t runaway = -1, bad = n;
+  // Particles go in groups of kLanes: the translation one by one, then the group's
+  // orientations side by side (rotation_lanes.h), each equal to the scalar line bit for bit.
+  const std::int64_t groups = (n + kLanes - 1) / kLanes;
 #pragma omp parallel for schedule(static) reduction(+ : work_gravity, work_drag, work_applied) \
     reduction(max : runaway) reduction(min : bad)
-  for (std::int64_t i = 0; i < n; ++i) {
-    // A non-finite force or torque stops the run after this pass; its particle stays put so
-    // that the report shows where it was.
-    if (!p.force[i].allFinite() || !p.torque[i].allFinite()) {
-      bad = std::min(bad, i);
-      continue;
+  for (std::int64_t group = 0; group < groups; ++group) {
+    const std::int64_t first = group * kLanes, end = std::min(first + kLanes, n);
+    unsigned advanced = 0;  // bit l: particle first + l moves this step
+    for (std::int64_t i = first; i < end; ++i) {
+      // A non-finite force or torque stops the run after this pass; its particle stays put so
+      // that the report shows where it was.
+      if (!p.force[i].allFinite() || !p.torque[i].allFinite()) {
+        bad = std::min(bad, i);
+        continue;
+      }
+      p.v[i] += p.force[i] * (p.inv_mass[i] * dt);
+      p.omega[i] += p.torque[i] * (p.inv_inertia[i] * dt);
+      const Vec3 dx = p.v[i] * dt;
+      // Work of body forces over the drift x_n -> x_n+1 = x_n + v_n+1 dt.
+      if (p.inv_mass[i] > 0.0) {
+        if (ph.gravity) work_gravity += p.mass[i] * ph.g.dot(dx);
+        if (ph.drag) work_drag -= ph.drag_coefficient * (p.v[i] - ph.air_velocity).dot(dx);
+        if (ph.applied_loads)
+          work_applied += w_.applied_force[i].dot(dx) + w_.applied_torque[i].dot(p.omega[i]) * dt;
+      }
+      p.x[i] += dx;
+      w_.cell.Wrap(p.x[i]);
+      if (!(dx.squaredNorm() <= limit * limit * p.radius[i] * p.radius[i]))
+        runaway = std::max(runaway, i);
+      advanced |= 1u << (i - first);
     }
-    p.v[i] += p.force[i] * (p.inv_mass[i] * dt);
-    p.omega[i] += p.torque[i] * (p.inv_inertia[i] * dt);
-    const Vec3 dx = p.v[i] * dt;
-    // Work of body forces over the drift x_n -> x_n+1 = x_n + v_n+1 dt.
-    if (p.inv_mass[i] > 0.0) {
-      if (ph.gravity) work_gravity += p.mass[i] * ph.g.dot(dx);
-      if (ph.drag) work_drag -= ph.drag_coefficient * (p.v[i] - ph.air_velocity).dot(dx);
-      if (ph.applied_loads)
-        work_applied += w_.applied_force[i].dot(dx) + w_.applied_torque[i].dot(p.omega[i]) * dt;
-    }
-    p.x[i] += dx;
-    w_.cell.Wrap(p.x[i]);
-    p.q[i] = (QuatFromRotationVector(p.omega[i] * dt) * p.q[i]).normalized();
-    if (!(dx.squaredNorm() <= limit * limit * p.radius[i] * p.radius[i]))
-      runaway = std::max(runaway, i);
+    RotateGroup(first, end, advanced);
   }
   if (bad < n) FailAt(static_cast<std::size_t>(bad), "non-finite force or torque");
   w_.energy.work_gravity += work_gravity;
@@ -143,6 +152,30 @@ void Simulation::Integrate() {
   if (runaway >= 0)
     FailAt(static_cast<std::size_t>(runaway),
            fmt::format("kinetic-energy blow-up: moved more than {} radius in one step", limit));
+}
+
+void Simulation::RotateGroup(std::int64_t first, std::int64_t end, unsigned advanced) {
+  Particles& p = w_.particles;
+  const double dt = w_.settings.dt;
+  unsigned left = advanced;  // particles still to turn by the scalar line
+  if (end - first == kLanes && advanced != 0) {
+    QuatLanes q;
+    Vec3Lanes omega;
+    const Quat* g = &p.q[first];
+    GatherQuatLanes({&g[0], &g[1], &g[2], &g[3]}, q);
+    omega.x = Across([&](int l) { return p.omega[first + l].x(); });
+    omega.y = Across([&](int l) { return p.omega[first + l].y(); });
+    omega.z = Across([&](int l) { return p.omega[first + l].z(); });
+    const RotationLanesResult r = RotateLanes(q, omega, dt);
+    for (int l = 0; l < kLanes; ++l) {
+      if (!(advanced & r.holds & (1u << l))) continue;
+      p.q[first + l] = Quat(r.q.w[l], r.q.x[l], r.q.y[l], r.q.z[l]);
+      left &= ~(1u << l);
+    }
+  }
+  for (std::int64_t i = first; i < end; ++i)
+    if (left & (1u << (i - first)))
+      p.q[i] = (QuatFromRotationVector(p.omega[i] * dt) * p.q[i]).normalized();
 }
 
 void Simulation::ApplyLocalDamping() {

@@ -19,21 +19,14 @@
 #include <limits>
 #include <utility>
 
+#include "engine/core/lanes.h"
 #include "engine/interactions/beam_bond.h"
 
 namespace fibrenet {
 
-inline constexpr int kBondLanes = 4;
+// One bond per lane of the engine's vector of four doubles (engine/core/lanes.h).
+inline constexpr int kBondLanes = kLanes;
 
-// GCC and Clang vector extension: arithmetic acts lane by lane (on SSE2 as two halves).
-typedef double Lanes __attribute__((vector_size(kBondLanes * sizeof(double))));
-
-struct Vec3Lanes {
-  Lanes x, y, z;
-};
-struct QuatLanes {
-  Lanes w, x, y, z;
-};
 // Row-major: m[row][col].
 struct Mat3Lanes {
   Lanes m[3][3];
@@ -164,23 +157,6 @@ inline void SetLane(BondLanesInput& in, int l, const BondGeometry& g, const Bond
 
 namespace lanes {
 
-inline Lanes Splat(double v) { return Lanes{v, v, v, v}; }
-
-inline Vec3Lanes Add(const Vec3Lanes& a, const Vec3Lanes& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-inline Vec3Lanes Sub(const Vec3Lanes& a, const Vec3Lanes& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-inline Vec3Lanes Scale(Lanes s, const Vec3Lanes& v) { return {s * v.x, s * v.y, s * v.z}; }
-inline Vec3Lanes Negate(const Vec3Lanes& v) { return {-v.x, -v.y, -v.z}; }
-// The orders of Eigen's 3-vector reductions: (x + y) + z.
-inline Lanes Dot(const Vec3Lanes& a, const Vec3Lanes& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline Vec3Lanes Cross(const Vec3Lanes& a, const Vec3Lanes& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
 // Eigen's 3x3 matrix times vector sums rows 0 and 1 two at a time in a vector register,
 // (m0 v0 + m1 v1) + m2 v2, and the last row alone as m0 v0 + (m1 v1 + m2 v2).
 inline Vec3Lanes Times(const Mat3Lanes& M, const Vec3Lanes& v) {
@@ -194,17 +170,6 @@ inline Vec3Lanes TransposeTimes(const Mat3Lanes& M, const Vec3Lanes& v) {
           M.m[0][1] * v.x + M.m[1][1] * v.y + M.m[2][1] * v.z,
           M.m[0][2] * v.x + M.m[1][2] * v.y + M.m[2][2] * v.z};
 }
-
-// Eigen's quaternion product as its SSE2 code computes it (Geometry_SIMD.h), term for term.
-inline QuatLanes Product(const QuatLanes& a, const QuatLanes& b) {
-  QuatLanes r;
-  r.x = (a.w * b.x + a.y * b.z) - (a.z * b.y - a.x * b.w);
-  r.y = (a.w * b.y + a.y * b.w) + (a.z * b.x - a.x * b.z);
-  r.z = (a.w * b.z - a.y * b.x) + (a.z * b.w + a.x * b.y);
-  r.w = (a.w * b.w - a.y * b.y) - (a.z * b.z + a.x * b.x);
-  return r;
-}
-inline QuatLanes Conjugate(const QuatLanes& q) { return {q.w, -q.x, -q.y, -q.z}; }
 
 // Eigen's Quaternion::toRotationMatrix, term for term.
 inline Mat3Lanes RotationMatrix(const QuatLanes& q) {
@@ -223,12 +188,6 @@ inline Mat3Lanes RotationMatrix(const QuatLanes& q) {
   R.m[2][1] = tyz + twx;
   R.m[2][2] = 1.0 - (txx + tyy);
   return R;
-}
-
-inline Lanes Sqrt(Lanes v) {
-  Lanes r;
-  for (int l = 0; l < kBondLanes; ++l) r[l] = std::sqrt(v[l]);
-  return r;
 }
 
 }  // namespace lanes
