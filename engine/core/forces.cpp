@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/interactions/beam_bond_lanes.h"
+#include "engine/interactions/contact_lanes.h"
 
 namespace fibrenet {
 
@@ -59,6 +60,33 @@ void GatherBondLanes(const World& w, const std::vector<BondLanesType>& types,
   GatherVec3Lanes(v_rel, in.v_rel);
   GatherVec3Lanes(omega_i, in.omega_i);
   GatherVec3Lanes(omega_j, in.omega_j);
+}
+
+// Gathers the neighbour-list entries k[0..3] into the contact lanes' input: the geometry
+// the scalar loop builds for EvaluateContact, and each pair's history.
+void GatherContactLanes(World& w, const std::size_t (&k)[kLanes], ContactLanesInput& in) {
+  const Particles& p = w.particles;
+  NeighbourList& nl = w.neighbours;
+  std::int32_t i[kLanes], j[kLanes];
+  Vec3 d[kLanes], v_rel[kLanes], omega_i[kLanes], omega_j[kLanes], xi[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    i[l] = nl.Owner(k[l]), j[l] = nl.Partner(k[l]);
+    d[l] = w.cell.Delta(p.x[i[l]], p.x[j[l]]);
+    v_rel[l] = p.v[j[l]] - p.v[i[l]];
+    omega_i[l] = p.omega[i[l]], omega_j[l] = p.omega[j[l]];
+    xi[l] = nl.History(k[l]);
+  }
+  GatherVec3Lanes(d, in.d);
+  in.dist = lanes::Sqrt(lanes::Dot(in.d, in.d));
+  in.r_i = Across([&](int l) { return p.radius[i[l]]; });
+  in.r_j = Across([&](int l) { return p.radius[j[l]]; });
+  const Lanes m_i = Across([&](int l) { return p.mass[i[l]]; });
+  const Lanes m_j = Across([&](int l) { return p.mass[j[l]]; });
+  in.m_eff = m_i * m_j / (m_i + m_j);
+  GatherVec3Lanes(v_rel, in.v_rel);
+  GatherVec3Lanes(omega_i, in.omega_i);
+  GatherVec3Lanes(omega_j, in.omega_j);
+  GatherVec3Lanes(xi, in.xi);
 }
 
 // The normal law's energy of particles i and j, d = x_j - x_i apart; 0 when apart. Their
@@ -206,7 +234,29 @@ void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses
                          static_cast<int>(xi.z() != 0.0);
         if (static_cast<int>(!touch) & held) xi.setZero();
       }
-      for (std::size_t c = 0; c < count; ++c) {
+      // Four touching pairs at a time through the lanes, the rest one by one; each pair's
+      // results equal EvaluateContact's bit for bit and go out in the same order.
+      std::size_t c = 0;
+      for (; c + kLanes <= count; c += kLanes) {
+        std::size_t k[kLanes];
+        for (int l = 0; l < kLanes; ++l) k[l] = block + touching[c + l];
+        ContactLanesInput in;
+        GatherContactLanes(w, k, in);
+        ContactLanesResult r;
+        EvaluateContactLanes(in, w.contact, dt, friction, r);
+        for (int l = 0; l < kLanes; ++l) {
+          const Vec3 force_j(r.force_j.x[l], r.force_j.y[l], r.force_j.z[l]);
+          out.AddReaction(nl.Owner(k[l]), force_j,
+                          Vec3(r.torque_i.x[l], r.torque_i.y[l], r.torque_i.z[l]));
+          out.Add(nl.Partner(k[l]), force_j,
+                  Vec3(r.torque_j.x[l], r.torque_j.y[l], r.torque_j.z[l]));
+          nl.History(k[l]) = Vec3(r.xi.x[l], r.xi.y[l], r.xi.z[l]);
+          damping += r.damping_power[l] * dt;
+          slip += r.slip_loss[l];
+          min_ratio = std::min(min_ratio, in.dist[l] / (in.r_i[l] + in.r_j[l]));
+        }
+      }
+      for (; c < count; ++c) {
         const std::size_t k = block + touching[c];
         const std::int32_t i = nl.Owner(k), j = nl.Partner(k);
         const Vec3 d = w.cell.Delta(p.x[i], p.x[j]);
