@@ -20,11 +20,15 @@ struct Cell {
   // Shortest vector from a to b under the periodic images (minimum image convention).
   // Hot: runs for every pair every step. |d| <= L/2 (almost every pair) skips the division
   // and the rounding, which would leave d unchanged there anyway, so results are identical.
+  // The components are built as scalars and put together once: a vector whose halves were
+  // written one at a time and then read whole stalls on the store forwarding (36% of the
+  // state check's samples).
   Vec3 Delta(const Vec3& a, const Vec3& b) const {
-    Vec3 d = b - a;
-    if (periodic_x) d.x() = MinimumImage(d.x(), Lx());
-    if (periodic_y) d.y() = MinimumImage(d.y(), Ly());
-    return d;
+    double dx = b.x() - a.x(), dy = b.y() - a.y();
+    const double dz = b.z() - a.z();
+    if (periodic_x) dx = MinimumImage(dx, Lx());
+    if (periodic_y) dy = MinimumImage(dy, Ly());
+    return Vec3(dx, dy, dz);
   }
 
   // Maps a position back into [lo, hi) along the periodic directions. A position already
