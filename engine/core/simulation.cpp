@@ -13,6 +13,35 @@
 
 namespace fibrenet {
 
+namespace {
+
+// Turns particles [first, end) (at most kLanes) by their spins over the step; bit l of
+// `advanced` says whether particle first + l moves this step.
+void RotateGroup(Quat* __restrict q, const Vec3* __restrict omega, std::int64_t first,
+                 std::int64_t end, unsigned advanced, double dt) {
+  unsigned left = advanced;  // particles still to turn by the scalar line
+  if (end - first == kLanes && advanced != 0) {
+    QuatLanes q_lanes;
+    Vec3Lanes omega_lanes;
+    const Quat* g = q + first;
+    GatherQuatLanes({&g[0], &g[1], &g[2], &g[3]}, q_lanes);
+    omega_lanes.x = Across([&](int l) { return omega[first + l].x(); });
+    omega_lanes.y = Across([&](int l) { return omega[first + l].y(); });
+    omega_lanes.z = Across([&](int l) { return omega[first + l].z(); });
+    const RotationLanesResult r = RotateLanes(q_lanes, omega_lanes, dt);
+    for (int l = 0; l < kLanes; ++l) {
+      if (!(advanced & r.holds & (1u << l))) continue;
+      q[first + l] = Quat(r.q.w[l], r.q.x[l], r.q.y[l], r.q.z[l]);
+      left &= ~(1u << l);
+    }
+  }
+  for (std::int64_t i = first; i < end; ++i)
+    if (left & (1u << (i - first)))
+      q[i] = (QuatFromRotationVector(omega[i] * dt) * q[i]).normalized();
+}
+
+}  // namespace
+
 std::string Simulation::Prepare() {
   FlushDenormalsToZero();
   Particles& p = w_.particles;
@@ -115,6 +144,22 @@ void Simulation::Integrate() {
   // Particles go in groups of kLanes: the translation one by one, then the group's
   // orientations side by side (rotation_lanes.h), each equal to the scalar line bit for bit.
   const std::int64_t groups = (n + kLanes - 1) / kLanes;
+  // Plain pointers and local copies: a store to a particle array cannot then change them, so
+  // they are not loaded again for every particle.
+  Vec3* __restrict x = p.x.data();
+  Vec3* __restrict v = p.v.data();
+  Vec3* __restrict omega = p.omega.data();
+  Quat* __restrict q = p.q.data();
+  const Vec3* __restrict force = p.force.data();
+  const Vec3* __restrict torque = p.torque.data();
+  const double* __restrict inv_mass = p.inv_mass.data();
+  const double* __restrict inv_inertia = p.inv_inertia.data();
+  const double* __restrict mass = p.mass.data();
+  const double* __restrict radius = p.radius.data();
+  const Cell cell = w_.cell;
+  const bool gravity = ph.gravity, drag = ph.drag, applied = ph.applied_loads;
+  const Vec3 g = ph.g, air_velocity = ph.air_velocity;
+  const double drag_coefficient = ph.drag_coefficient;
 #pragma omp parallel for schedule(static) reduction(+ : work_gravity, work_drag, work_applied) \
     reduction(max : runaway) reduction(min : bad)
   for (std::int64_t group = 0; group < groups; ++group) {
@@ -123,27 +168,27 @@ void Simulation::Integrate() {
     for (std::int64_t i = first; i < end; ++i) {
       // A non-finite force or torque stops the run after this pass; its particle stays put so
       // that the report shows where it was.
-      if (!p.force[i].allFinite() || !p.torque[i].allFinite()) {
+      if (!force[i].allFinite() || !torque[i].allFinite()) {
         bad = std::min(bad, i);
         continue;
       }
-      p.v[i] += p.force[i] * (p.inv_mass[i] * dt);
-      p.omega[i] += p.torque[i] * (p.inv_inertia[i] * dt);
-      const Vec3 dx = p.v[i] * dt;
+      v[i] += force[i] * (inv_mass[i] * dt);
+      omega[i] += torque[i] * (inv_inertia[i] * dt);
+      const Vec3 dx = v[i] * dt;
       // Work of body forces over the drift x_n -> x_n+1 = x_n + v_n+1 dt.
-      if (p.inv_mass[i] > 0.0) {
-        if (ph.gravity) work_gravity += p.mass[i] * ph.g.dot(dx);
-        if (ph.drag) work_drag -= ph.drag_coefficient * (p.v[i] - ph.air_velocity).dot(dx);
-        if (ph.applied_loads)
-          work_applied += w_.applied_force[i].dot(dx) + w_.applied_torque[i].dot(p.omega[i]) * dt;
+      if (inv_mass[i] > 0.0) {
+        if (gravity) work_gravity += mass[i] * g.dot(dx);
+        if (drag) work_drag -= drag_coefficient * (v[i] - air_velocity).dot(dx);
+        if (applied)
+          work_applied += w_.applied_force[i].dot(dx) + w_.applied_torque[i].dot(omega[i]) * dt;
       }
-      p.x[i] += dx;
-      w_.cell.Wrap(p.x[i]);
-      if (!(dx.squaredNorm() <= limit * limit * p.radius[i] * p.radius[i]))
+      x[i] += dx;
+      cell.Wrap(x[i]);
+      if (!(dx.squaredNorm() <= limit * limit * radius[i] * radius[i]))
         runaway = std::max(runaway, i);
       advanced |= 1u << (i - first);
     }
-    RotateGroup(first, end, advanced);
+    RotateGroup(q, omega, first, end, advanced, dt);
   }
   if (bad < n) FailAt(static_cast<std::size_t>(bad), "non-finite force or torque");
   w_.energy.work_gravity += work_gravity;
@@ -152,30 +197,6 @@ void Simulation::Integrate() {
   if (runaway >= 0)
     FailAt(static_cast<std::size_t>(runaway),
            fmt::format("kinetic-energy blow-up: moved more than {} radius in one step", limit));
-}
-
-void Simulation::RotateGroup(std::int64_t first, std::int64_t end, unsigned advanced) {
-  Particles& p = w_.particles;
-  const double dt = w_.settings.dt;
-  unsigned left = advanced;  // particles still to turn by the scalar line
-  if (end - first == kLanes && advanced != 0) {
-    QuatLanes q;
-    Vec3Lanes omega;
-    const Quat* g = &p.q[first];
-    GatherQuatLanes({&g[0], &g[1], &g[2], &g[3]}, q);
-    omega.x = Across([&](int l) { return p.omega[first + l].x(); });
-    omega.y = Across([&](int l) { return p.omega[first + l].y(); });
-    omega.z = Across([&](int l) { return p.omega[first + l].z(); });
-    const RotationLanesResult r = RotateLanes(q, omega, dt);
-    for (int l = 0; l < kLanes; ++l) {
-      if (!(advanced & r.holds & (1u << l))) continue;
-      p.q[first + l] = Quat(r.q.w[l], r.q.x[l], r.q.y[l], r.q.z[l]);
-      left &= ~(1u << l);
-    }
-  }
-  for (std::int64_t i = first; i < end; ++i)
-    if (left & (1u << (i - first)))
-      p.q[i] = (QuatFromRotationVector(p.omega[i] * dt) * p.q[i]).normalized();
 }
 
 void Simulation::ApplyLocalDamping() {

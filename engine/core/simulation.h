@@ -36,9 +36,6 @@ class Simulation {
   void ComputeForces(bool rebuild_neighbours);
   // Kick and drift; stops the run on a non-finite force or torque or a runaway particle.
   void Integrate();
-  // Turns particles [first, end) (at most kLanes) by their spins over the step; bit l of
-  // `advanced` says whether particle first + l moves this step.
-  void RotateGroup(std::int64_t first, std::int64_t end, unsigned advanced);
   // Physics::local_damping: adds the damping to each free particle's force and torque and
   // books the energy it takes out.
   void ApplyLocalDamping();
