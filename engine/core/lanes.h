@@ -5,7 +5,7 @@
 // (quaternion products, square roots, divisions), so one item at a time keeps the floating-
 // point units waiting on latency. Four independent chains in the lanes fill them. The helpers
 // below repeat Eigen's operations in Eigen's order, so a lane equals the scalar code on its
-// item bit for bit (beam_bond_lanes.h, rotation_lanes.h).
+// item bit for bit (beam_bond_lanes.h, contact_lanes.h, rotation_lanes.h).
 #pragma once
 
 #include <cmath>
