@@ -148,21 +148,9 @@ BENCHMARK(BM_EvaluateContact)->Arg(0)->Arg(1);
 void BM_EvaluateContactLanes(benchmark::State& state) {
   const std::vector<ContactGeometry> batch = ContactBatch();
   std::vector<ContactLanesInput> groups(kBatch / kLanes);
-  for (std::size_t k = 0; k < groups.size(); ++k) {
-    const ContactGeometry* g = &batch[k * kLanes];
-    ContactLanesInput& in = groups[k];
-    in.d.x = Across([&](int l) { return g[l].d.x(); });
-    in.d.y = Across([&](int l) { return g[l].d.y(); });
-    in.d.z = Across([&](int l) { return g[l].d.z(); });
-    in.dist = Across([&](int l) { return g[l].dist; });
-    in.r_i = Across([&](int l) { return g[l].r_i; });
-    in.r_j = Across([&](int l) { return g[l].r_j; });
-    in.m_eff = Across([&](int l) { return g[l].m_eff; });
-    GatherVec3Lanes({g[0].v_rel, g[1].v_rel, g[2].v_rel, g[3].v_rel}, in.v_rel);
-    GatherVec3Lanes({g[0].omega_i, g[1].omega_i, g[2].omega_i, g[3].omega_i}, in.omega_i);
-    GatherVec3Lanes({g[0].omega_j, g[1].omega_j, g[2].omega_j, g[3].omega_j}, in.omega_j);
-    in.xi = {lanes::Splat(0.0), lanes::Splat(0.0), lanes::Splat(0.0)};
-  }
+  const Vec3 no_history[kLanes] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+  for (std::size_t k = 0; k < groups.size(); ++k)
+    SetContactLanes(&batch[k * kLanes], no_history, groups[k]);
   const ContactParams p = BenchContactParams();
   const bool friction = state.range(0) != 0;
   ContactLanesResult r;

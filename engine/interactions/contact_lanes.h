@@ -33,6 +33,22 @@ struct ContactLanesResult {
   Vec3Lanes xi;  // the history after the step
 };
 
+// Four pairs as EvaluateContact takes them, g[0..3], with their histories xi[0..3], put into
+// the lanes' input (the contact loop gathers its own from the particles instead).
+inline void SetContactLanes(const ContactGeometry* g, const Vec3* xi, ContactLanesInput& in) {
+  in.d.x = Across([&](int l) { return g[l].d.x(); });
+  in.d.y = Across([&](int l) { return g[l].d.y(); });
+  in.d.z = Across([&](int l) { return g[l].d.z(); });
+  in.dist = Across([&](int l) { return g[l].dist; });
+  in.r_i = Across([&](int l) { return g[l].r_i; });
+  in.r_j = Across([&](int l) { return g[l].r_j; });
+  in.m_eff = Across([&](int l) { return g[l].m_eff; });
+  GatherVec3Lanes({g[0].v_rel, g[1].v_rel, g[2].v_rel, g[3].v_rel}, in.v_rel);
+  GatherVec3Lanes({g[0].omega_i, g[1].omega_i, g[2].omega_i, g[3].omega_i}, in.omega_i);
+  GatherVec3Lanes({g[0].omega_j, g[1].omega_j, g[2].omega_j, g[3].omega_j}, in.omega_j);
+  GatherVec3Lanes({xi[0], xi[1], xi[2], xi[3]}, in.xi);
+}
+
 namespace lanes {
 
 inline Lanes Pow(Lanes base, double exponent) {

@@ -52,23 +52,11 @@ void CompareGroups(const ContactParams& params, bool friction, int groups, int& 
   for (int group = 0; group < groups; ++group) {
     Pair pairs[kLanes];
     for (Pair& p : pairs) p = RandomPair(rng);
+    ContactGeometry g[kLanes];
+    Vec3 xi[kLanes];
+    for (int l = 0; l < kLanes; ++l) g[l] = pairs[l].g, xi[l] = pairs[l].xi;
     ContactLanesInput in;
-    in.d.x = Across([&](int l) { return pairs[l].g.d.x(); });
-    in.d.y = Across([&](int l) { return pairs[l].g.d.y(); });
-    in.d.z = Across([&](int l) { return pairs[l].g.d.z(); });
-    in.dist = Across([&](int l) { return pairs[l].g.dist; });
-    in.r_i = Across([&](int l) { return pairs[l].g.r_i; });
-    in.r_j = Across([&](int l) { return pairs[l].g.r_j; });
-    in.m_eff = Across([&](int l) { return pairs[l].g.m_eff; });
-    Vec3 v_rel[kLanes], omega_i[kLanes], omega_j[kLanes], xi[kLanes];
-    for (int l = 0; l < kLanes; ++l) {
-      v_rel[l] = pairs[l].g.v_rel, omega_i[l] = pairs[l].g.omega_i;
-      omega_j[l] = pairs[l].g.omega_j, xi[l] = pairs[l].xi;
-    }
-    GatherVec3Lanes(v_rel, in.v_rel);
-    GatherVec3Lanes(omega_i, in.omega_i);
-    GatherVec3Lanes(omega_j, in.omega_j);
-    GatherVec3Lanes(xi, in.xi);
+    SetContactLanes(g, xi, in);
     ContactLanesResult lanes;
     EvaluateContactLanes(in, params, kDt, friction, lanes);
     for (int l = 0; l < kLanes; ++l) {
