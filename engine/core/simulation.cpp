@@ -15,6 +15,28 @@ namespace fibrenet {
 
 namespace {
 
+// 0 when every component of v is finite, NaN otherwise: a component times zero is 0 (or -0),
+// or NaN for an infinity or a NaN, and a NaN carries through the sum. One test per particle
+// instead of a branch per component.
+template <class Vector>
+double NonFiniteMark(const Vector& v) {
+  return (v * 0.0).sum();
+}
+
+// Eigen's sign of one component: -1, 0 or 1, and NaN for NaN.
+double SignOf(double a) { return std::isnan(a) ? a : static_cast<double>((a > 0.0) - (a < 0.0)); }
+
+// Local non-viscous damping of a load `load` (force or torque) on a particle moving with
+// `motion`: -alpha |load| sign(motion), component by component, as Eigen's
+// -alpha * load.cwiseAbs().cwiseProduct(motion.cwiseSign()) forms it. Built from scalars:
+// Eigen's expression stored its components one at a time and read them back in pairs, which
+// stalls on the store forwarding.
+Vec3 LocalDampingOf(double alpha, const Vec3& load, const Vec3& motion) {
+  return Vec3(-alpha * (std::abs(load.x()) * SignOf(motion.x())),
+              -alpha * (std::abs(load.y()) * SignOf(motion.y())),
+              -alpha * (std::abs(load.z()) * SignOf(motion.z())));
+}
+
 // Turns particles [first, end) (at most kLanes) by their spins over the step; bit l of
 // `advanced` says whether particle first + l moves this step.
 void RotateGroup(Quat* __restrict q, const Vec3* __restrict omega, std::int64_t first,
@@ -92,9 +114,9 @@ void Simulation::Step() {
   int moved = 0;
 #pragma omp parallel for schedule(static) reduction(min : bad) reduction(| : moved)
   for (std::int64_t i = 0; i < n; ++i) {
-    if (!p.x[i].allFinite() || !p.v[i].allFinite() || !p.q[i].coeffs().allFinite() ||
-        !p.omega[i].allFinite())
-      bad = std::min(bad, i);
+    const double mark = NonFiniteMark(p.x[i]) + NonFiniteMark(p.v[i]) +
+                        NonFiniteMark(p.q[i].coeffs()) + NonFiniteMark(p.omega[i]);
+    if (mark != 0.0) bad = std::min(bad, i);
     if (check_skin) moved |= nl.MovedTooFar(i, p.x[i], w_.cell) ? 1 : 0;
   }
   if (bad < n)
@@ -138,8 +160,12 @@ void Simulation::Integrate() {
   const double dt = w_.settings.dt;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
   const double limit = w_.settings.max_step_displacement;
-  if (ph.local_damping > 0.0) ApplyLocalDamping();
-  double work_gravity = 0.0, work_drag = 0.0, work_applied = 0.0;
+  const double alpha = ph.local_damping;
+  const std::vector<Vec3>& reference = w_.damping_reference;
+  if (alpha > 0.0 && !reference.empty() && reference.size() != p.size())
+    throw RunError(fmt::format("damping_reference holds {} velocities for {} particles",
+                               reference.size(), p.size()));
+  double work_gravity = 0.0, work_drag = 0.0, work_applied = 0.0, damping_loss = 0.0;
   std::int64_t runaway = -1, bad = n;
   // Particles go in groups of kLanes: the translation one by one, then the group's
   // orientations side by side (rotation_lanes.h), each equal to the scalar line bit for bit.
@@ -150,22 +176,38 @@ void Simulation::Integrate() {
   Vec3* __restrict v = p.v.data();
   Vec3* __restrict omega = p.omega.data();
   Quat* __restrict q = p.q.data();
-  const Vec3* __restrict force = p.force.data();
-  const Vec3* __restrict torque = p.torque.data();
+  Vec3* __restrict force = p.force.data();
+  Vec3* __restrict torque = p.torque.data();
+  const Vec3* __restrict reference_v = reference.empty() ? nullptr : reference.data();
   const double* __restrict inv_mass = p.inv_mass.data();
   const double* __restrict inv_inertia = p.inv_inertia.data();
   const double* __restrict mass = p.mass.data();
   const double* __restrict radius = p.radius.data();
   const Cell cell = w_.cell;
   const bool gravity = ph.gravity, drag = ph.drag, applied = ph.applied_loads;
+  const bool damped = alpha > 0.0;
   const Vec3 g = ph.g, air_velocity = ph.air_velocity;
   const double drag_coefficient = ph.drag_coefficient;
-#pragma omp parallel for schedule(static) reduction(+ : work_gravity, work_drag, work_applied) \
+#pragma omp parallel for schedule(static) \
+    reduction(+ : work_gravity, work_drag, work_applied, damping_loss) \
     reduction(max : runaway) reduction(min : bad)
   for (std::int64_t group = 0; group < groups; ++group) {
     const std::int64_t first = group * kLanes, end = std::min(first + kLanes, n);
     unsigned advanced = 0;  // bit l: particle first + l moves this step
     for (std::int64_t i = first; i < end; ++i) {
+      // Local non-viscous damping (Physics::local_damping) of a free particle, in this pass
+      // rather than one of its own: the particle's arrays are then read once per step.
+      if (damped && inv_mass[i] != 0.0) {
+        const Vec3 motion = reference_v ? Vec3(v[i] - reference_v[i]) : v[i];
+        const Vec3 damping_force = LocalDampingOf(alpha, force[i], motion);
+        const Vec3 damping_torque = LocalDampingOf(alpha, torque[i], omega[i]);
+        force[i] += damping_force;
+        torque[i] += damping_torque;
+        // Its work over the drift below, with v_n+1 and omega_n+1.
+        const Vec3 v_next = v[i] + force[i] * (inv_mass[i] * dt);
+        const Vec3 omega_next = omega[i] + torque[i] * (inv_inertia[i] * dt);
+        damping_loss -= (damping_force.dot(v_next) + damping_torque.dot(omega_next)) * dt;
+      }
       // A non-finite force or torque stops the run after this pass; its particle stays put so
       // that the report shows where it was.
       if (!force[i].allFinite() || !torque[i].allFinite()) {
@@ -194,43 +236,10 @@ void Simulation::Integrate() {
   w_.energy.work_gravity += work_gravity;
   w_.energy.work_drag += work_drag;
   w_.energy.work_applied += work_applied;
+  w_.energy.damping += damping_loss;
   if (runaway >= 0)
     FailAt(static_cast<std::size_t>(runaway),
            fmt::format("kinetic-energy blow-up: moved more than {} radius in one step", limit));
-}
-
-void Simulation::ApplyLocalDamping() {
-  Particles& p = w_.particles;
-  const double alpha = w_.physics.local_damping, dt = w_.settings.dt;
-  const std::int64_t n = static_cast<std::int64_t>(p.size());
-  const std::vector<Vec3>& reference = w_.damping_reference;
-  if (!reference.empty() && reference.size() != p.size())
-    throw RunError(fmt::format("damping_reference holds {} velocities for {} particles",
-                               reference.size(), p.size()));
-  const bool at_rest = reference.empty();
-  double loss = 0.0;
-  // Plain pointers, as in Integrate: the stores to the forces then leave them be.
-  Vec3* __restrict force = p.force.data();
-  Vec3* __restrict torque = p.torque.data();
-  const Vec3* __restrict v = p.v.data();
-  const Vec3* __restrict omega = p.omega.data();
-  const Vec3* __restrict reference_v = reference.data();
-  const double* __restrict inv_mass = p.inv_mass.data();
-  const double* __restrict inv_inertia = p.inv_inertia.data();
-#pragma omp parallel for schedule(static) reduction(+ : loss)
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (inv_mass[i] == 0.0) continue;  // a prescribed motion
-    const Vec3 motion = at_rest ? v[i] : Vec3(v[i] - reference_v[i]);
-    const Vec3 damping_force = -alpha * force[i].cwiseAbs().cwiseProduct(motion.cwiseSign());
-    const Vec3 damping_torque = -alpha * torque[i].cwiseAbs().cwiseProduct(omega[i].cwiseSign());
-    force[i] += damping_force;
-    torque[i] += damping_torque;
-    // Work over the drift the integrator will make, with v_n+1 and omega_n+1.
-    const Vec3 v_next = v[i] + force[i] * (inv_mass[i] * dt);
-    const Vec3 omega_next = omega[i] + torque[i] * (inv_inertia[i] * dt);
-    loss -= (damping_force.dot(v_next) + damping_torque.dot(omega_next)) * dt;
-  }
-  w_.energy.damping += loss;
 }
 
 void Simulation::FailAt(std::size_t particle, const std::string& cause) {

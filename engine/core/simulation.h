@@ -35,10 +35,9 @@ class Simulation {
   // Builds the neighbour list first when asked to (Step decides in its state check).
   void ComputeForces(bool rebuild_neighbours);
   // Kick and drift; stops the run on a non-finite force or torque or a runaway particle.
+  // With Physics::local_damping, first adds the damping to each free particle's force and
+  // torque and books the energy it takes out.
   void Integrate();
-  // Physics::local_damping: adds the damping to each free particle's force and torque and
-  // books the energy it takes out.
-  void ApplyLocalDamping();
   [[noreturn]] void FailAt(std::size_t particle, const std::string& cause);
 
   World& w_;

@@ -403,6 +403,29 @@ TEST(Instability, NaNInALoneParticleStopsTheRun) {
   ExpectRunErrorNaming(sim, 2, lone);
 }
 
+// Every component of every state array, with each kind of non-finite value: the state check
+// tests each particle once (a component times zero is NaN for an infinity or a NaN).
+TEST(Instability, EveryNonFiniteComponentOfEveryArrayStopsTheRun) {
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double bad : {std::nan(""), inf, -inf}) {
+    for (int array = 0; array < 4; ++array) {
+      for (int component = 0; component < (array == 2 ? 4 : 3); ++component) {
+        World w = ChainWorld();
+        Simulation sim(w);
+        sim.Prepare();
+        sim.Run(2);
+        Particles& p = w.particles;
+        if (array == 0) p.x[3][component] = bad;
+        if (array == 1) p.v[3][component] = bad;
+        if (array == 2) p.q[3].coeffs()[component] = bad;
+        if (array == 3) p.omega[3][component] = bad;
+        SCOPED_TRACE(fmt::format("array {}, component {}, value {}", array, component, bad));
+        ExpectRunErrorNaming(sim, 2, 3);
+      }
+    }
+  }
+}
+
 // Two crossing chains falling on a floor with friction: bonds, contacts, walls, gravity.
 World BusyWorld() {
   World w;
