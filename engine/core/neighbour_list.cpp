@@ -55,6 +55,66 @@ bool NeighbourList::Excluded(std::int32_t a, std::int32_t b) const {
   return false;
 }
 
+int NeighbourList::BondsAtBuild(std::int32_t a, std::int32_t b) const {
+  int count = 0;
+  for (std::uint32_t k = excl_offsets_[a]; k < excl_offsets_[a + 1]; ++k)
+    count += excl_partners_[k] == b ? 1 : 0;
+  return count;
+}
+
+bool NeighbourList::AddBrokenBondPairs(std::vector<std::pair<std::int32_t, std::int32_t>> pairs) {
+  const std::size_t n = offsets_.size() - 1;
+  if (!valid_ || parked_ || x_at_build_.size() != n || excl_offsets_.size() != n + 1)
+    return false;
+  for (auto& [owner, partner] : pairs) {
+    if (BondsAtBuild(owner, partner) != 1) return false;
+    if (!RowHolds(owner, partner)) std::swap(owner, partner);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  // Where each pair goes in the old rows (sorted by partner); the rows keep their order.
+  std::vector<std::uint32_t> at(pairs.size());
+  for (std::size_t m = 0; m < pairs.size(); ++m) {
+    const auto [owner, partner] = pairs[m];
+    const auto first = partners_.begin() + offsets_[owner];
+    const auto last = partners_.begin() + offsets_[owner + 1];
+    const auto it = std::lower_bound(first, last, partner);
+    if (it != last && *it == partner) return false;  // a bonded pair is never in the rows
+    at[m] = static_cast<std::uint32_t>(it - partners_.begin());
+  }
+  // One pass that copies the entries between insertions as blocks.
+  const std::size_t entries = partners_.size() + pairs.size();
+  scratch_partners_.resize(entries);
+  scratch_history_.resize(entries);
+  std::vector<std::int32_t> owners(entries);
+  std::size_t from = 0, to = 0;
+  auto copy_to = [&](std::size_t end) {
+    std::copy(partners_.begin() + from, partners_.begin() + end, scratch_partners_.begin() + to);
+    std::copy(history_.begin() + from, history_.begin() + end, scratch_history_.begin() + to);
+    std::copy(owners_.begin() + from, owners_.begin() + end, owners.begin() + to);
+    to += end - from;
+    from = end;
+  };
+  for (std::size_t m = 0; m < pairs.size(); ++m) {
+    copy_to(at[m]);
+    scratch_partners_[to] = pairs[m].second;
+    scratch_history_[to] = Vec3::Zero();
+    owners[to] = pairs[m].first;
+    ++to;
+  }
+  copy_to(partners_.size());
+  // Row i starts later by the pairs added to the rows before it.
+  std::size_t added = 0;
+  for (std::size_t i = 0; i <= n; ++i) {
+    offsets_[i] += static_cast<std::uint32_t>(added);
+    while (added < pairs.size() && static_cast<std::size_t>(pairs[added].first) == i) ++added;
+  }
+  partners_.swap(scratch_partners_);
+  history_.swap(scratch_history_);
+  owners_.swap(owners);
+  return true;
+}
+
 void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bonds, double skin) {
   const std::size_t n = p.size();
   skin_ = skin;

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "engine/core/bonds.h"
@@ -41,6 +42,13 @@ class NeighbourList {
   }
   // Forces a rebuild at the next check (after bonds break or particles are added).
   void Invalidate() { valid_ = false; }
+  // Adds pairs {i, j} whose bond has just broken, with no history, instead of a build: every
+  // other pair that can touch before the next build is already in the rows, since the skin
+  // still bounds the motion since the last one. The forces are those a build would give, bit
+  // for bit: a build would add these pairs and differ otherwise only by pairs apart, which add
+  // nothing. Returns false, and changes nothing, where it cannot stand for a build: a list
+  // never built or invalidated, or a pair that another bond joined at the last build.
+  bool AddBrokenBondPairs(std::vector<std::pair<std::int32_t, std::int32_t>> pairs);
 
   std::size_t RowBegin(std::size_t i) const { return offsets_[i]; }
   std::size_t RowEnd(std::size_t i) const { return offsets_[i + 1]; }
@@ -74,6 +82,7 @@ class NeighbourList {
   // The entry of pair h (-1 if the rows lack it), and h's history as its row stores it.
   std::ptrdiff_t EntryOf(const PairHistory& h, Vec3* xi_in_row) const;
   bool Excluded(std::int32_t a, std::int32_t b) const;
+  int BondsAtBuild(std::int32_t a, std::int32_t b) const;
 
   std::vector<std::uint32_t> offsets_{0};
   std::vector<std::int32_t> partners_;

@@ -114,6 +114,68 @@ TEST(NeighbourList, LeavesOutBondsUntilTheyBreak) {
             BruteForcePairs(w.particles, w.cell, w.bonds, 5e-6));
 }
 
+// Bonds that break bring their pairs into the rows at once, without a build: the rows then
+// hold the pairs held before and the broken ones, each row sorted and owning its entries, and
+// every history as it was; every pair a build would list is among them.
+TEST(NeighbourList, PairsOfBrokenBondsJoinTheRowsWithoutABuild) {
+  std::mt19937 rng(7);
+  World w = RandomWorld(rng, 400, 0.5e-3, 0.1e-3, true);
+  AddSomeBonds(w, rng);
+  const double skin = 8e-6;
+  NeighbourList& nl = w.neighbours;
+  nl.Build(w.particles, w.cell, w.bonds, skin);
+  for (std::size_t k = 0; k < nl.size(); ++k) nl.History(k) = Vec3(1e-9 * (k + 1), 0.0, -1e-9);
+  const std::vector<PairHistory> histories = nl.ExportHistory();
+  Pairs expected = ListedPairs(nl, w.particles.size());
+  std::vector<std::pair<std::int32_t, std::int32_t>> broken;
+  for (std::size_t b = 0; b < w.bonds.size(); b += 2) {
+    w.bonds.broken[b] = 1;
+    broken.emplace_back(w.bonds.i[b], w.bonds.j[b]);
+    expected.push_back(std::minmax(w.bonds.i[b], w.bonds.j[b]));
+  }
+  std::sort(expected.begin(), expected.end());
+  const std::size_t builds = nl.builds();
+  ASSERT_TRUE(nl.AddBrokenBondPairs(broken));
+  EXPECT_EQ(nl.builds(), builds);
+  const Pairs listed = ListedPairs(nl, w.particles.size());
+  EXPECT_EQ(listed, expected);
+  for (const auto& pair : BruteForcePairs(w.particles, w.cell, w.bonds, skin))
+    EXPECT_TRUE(std::binary_search(listed.begin(), listed.end(), pair));
+  for (std::size_t i = 0; i < w.particles.size(); ++i)
+    for (std::size_t k = nl.RowBegin(i); k < nl.RowEnd(i); ++k) {
+      EXPECT_EQ(nl.Owner(k), static_cast<std::int32_t>(i));
+      if (k > nl.RowBegin(i)) {
+        EXPECT_LT(nl.Partner(k - 1), nl.Partner(k));
+      }
+    }
+  const std::vector<PairHistory> after = nl.ExportHistory();
+  ASSERT_EQ(after.size(), histories.size());
+  for (std::size_t h = 0; h < after.size(); ++h) {
+    EXPECT_EQ(after[h].i, histories[h].i);
+    EXPECT_EQ(after[h].j, histories[h].j);
+    EXPECT_EQ(after[h].xi, histories[h].xi);
+  }
+}
+
+// Where the rows cannot stand for a build, nothing changes and the caller builds: a list
+// never built, and a pair that a second bond joined at the last build.
+TEST(NeighbourList, BrokenBondPairsAreRefusedWhereOnlyABuildWillDo) {
+  std::mt19937 rng(8);
+  World w = RandomWorld(rng, 200, 0.3e-3, 0.05e-3, true);
+  AddSomeBonds(w, rng);
+  const std::pair<std::int32_t, std::int32_t> first(w.bonds.i[0], w.bonds.j[0]);
+  EXPECT_FALSE(w.neighbours.AddBrokenBondPairs({first}));
+  w.bonds.Add(first.first, first.second, w.bonds.type[0], BondKind::kFibreFibre, BondState{});
+  w.neighbours.Build(w.particles, w.cell, w.bonds, 5e-6);
+  const Pairs before = ListedPairs(w.neighbours, w.particles.size());
+  w.bonds.broken[0] = 1;
+  EXPECT_FALSE(w.neighbours.AddBrokenBondPairs({first}));
+  EXPECT_EQ(ListedPairs(w.neighbours, w.particles.size()), before);
+  const std::pair<std::int32_t, std::int32_t> second(w.bonds.i[1], w.bonds.j[1]);
+  w.bonds.broken[1] = 1;
+  EXPECT_TRUE(w.neighbours.AddBrokenBondPairs({second}));
+}
+
 // Particles numbered in no spatial order (fibres placed at random, say): the rows of the
 // first half of the particles must still hold about half the pairs, since the threads split
 // the rows by particle range. Holding each pair in its lower index's row would give them 3/4.
@@ -481,6 +543,38 @@ TEST(Determinism, SameSetupAndThreadCountGiveBitIdenticalPositions) {
   SetThreadCount(saved);
   EXPECT_GT(contacts, 0u);
   EXPECT_GT(runs[0][0].norm(), 0.0);
+  ASSERT_EQ(runs[0].size(), runs[1].size());
+  EXPECT_EQ(std::memcmp(runs[0].data(), runs[1].data(), runs[0].size() * sizeof(Vec3)), 0);
+}
+
+// Bonds breaking on impact: the steps that add the broken bonds' pairs to the rows give the
+// positions of steps that build the list again after each break, bit for bit, with fewer
+// builds.
+TEST(Determinism, BrokenBondPairsAddedGiveTheResultsOfABuild) {
+  std::vector<Vec3> runs[2];
+  std::size_t builds[2] = {0, 0}, broke = 0;
+  for (int run = 0; run < 2; ++run) {
+    World w = BusyWorld();
+    for (BeamBondParams& type : w.bonds.types) {
+      type.failure = BondFailure::kHill;
+      type.F_r0 = 2e-4;
+      type.F_s0 = 4e-5;
+      type.HillDefaults();
+    }
+    Simulation sim(w);
+    sim.Prepare();
+    for (int step = 0; step < 600; ++step) {
+      const std::size_t events = w.bonds.events.size();
+      sim.Step();
+      if (run == 1 && w.bonds.events.size() > events)
+        w.neighbours.Build(w.particles, w.cell, w.bonds, w.settings.skin);
+    }
+    runs[run] = w.particles.x;
+    builds[run] = w.neighbours.builds();
+    broke = w.bonds.events.size();
+  }
+  EXPECT_GT(broke, 0u);
+  EXPECT_LT(builds[0], builds[1]);
   ASSERT_EQ(runs[0].size(), runs[1].size());
   EXPECT_EQ(std::memcmp(runs[0].data(), runs[1].data(), runs[0].size() * sizeof(Vec3)), 0);
 }
