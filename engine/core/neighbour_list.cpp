@@ -49,12 +49,6 @@ void NeighbourList::BuildExclusions(std::size_t n, const Bonds& bonds) {
   }
 }
 
-bool NeighbourList::Excluded(std::int32_t a, std::int32_t b) const {
-  for (std::uint32_t k = excl_offsets_[a]; k < excl_offsets_[a + 1]; ++k)
-    if (excl_partners_[k] == b) return true;
-  return false;
-}
-
 int NeighbourList::BondsAtBuild(std::int32_t a, std::int32_t b) const {
   int count = 0;
   for (std::uint32_t k = excl_offsets_[a]; k < excl_offsets_[a + 1]; ++k)
@@ -64,8 +58,7 @@ int NeighbourList::BondsAtBuild(std::int32_t a, std::int32_t b) const {
 
 bool NeighbourList::AddBrokenBondPairs(std::vector<std::pair<std::int32_t, std::int32_t>> pairs) {
   const std::size_t n = offsets_.size() - 1;
-  if (!valid_ || parked_ || x_at_build_.size() != n || excl_offsets_.size() != n + 1)
-    return false;
+  if (Stale(n) || parked_ || excl_offsets_.size() != n + 1) return false;
   for (auto& [owner, partner] : pairs) {
     if (BondsAtBuild(owner, partner) != 1) return false;
     if (!RowHolds(owner, partner)) std::swap(owner, partner);
@@ -86,12 +79,10 @@ bool NeighbourList::AddBrokenBondPairs(std::vector<std::pair<std::int32_t, std::
   const std::size_t entries = partners_.size() + pairs.size();
   scratch_partners_.resize(entries);
   scratch_history_.resize(entries);
-  std::vector<std::int32_t> owners(entries);
   std::size_t from = 0, to = 0;
   auto copy_to = [&](std::size_t end) {
     std::copy(partners_.begin() + from, partners_.begin() + end, scratch_partners_.begin() + to);
     std::copy(history_.begin() + from, history_.begin() + end, scratch_history_.begin() + to);
-    std::copy(owners_.begin() + from, owners_.begin() + end, owners.begin() + to);
     to += end - from;
     from = end;
   };
@@ -99,7 +90,6 @@ bool NeighbourList::AddBrokenBondPairs(std::vector<std::pair<std::int32_t, std::
     copy_to(at[m]);
     scratch_partners_[to] = pairs[m].second;
     scratch_history_[to] = Vec3::Zero();
-    owners[to] = pairs[m].first;
     ++to;
   }
   copy_to(partners_.size());
@@ -111,7 +101,10 @@ bool NeighbourList::AddBrokenBondPairs(std::vector<std::pair<std::int32_t, std::
   }
   partners_.swap(scratch_partners_);
   history_.swap(scratch_history_);
-  owners_.swap(owners);
+  owners_.resize(entries);
+  for (std::size_t i = 0; i < n; ++i)
+    std::fill(owners_.begin() + offsets_[i], owners_.begin() + offsets_[i + 1],
+              static_cast<std::int32_t>(i));
   return true;
 }
 
@@ -197,7 +190,7 @@ void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bon
         if (!RowHolds(static_cast<std::int64_t>(i), j)) continue;
         const double reach = p.radius[i] + p.radius[j] + skin;
         if (cell.Delta(p.x[i], p.x[j]).squaredNorm() >= reach * reach) continue;
-        if (Excluded(static_cast<std::int32_t>(i), j)) continue;
+        if (BondsAtBuild(static_cast<std::int32_t>(i), j) > 0) continue;
         if (out) out[found] = j;
         ++found;
       }

@@ -81,7 +81,7 @@ class NeighbourList {
   void RestoreParked(std::size_t particles);
   // The entry of pair h (-1 if the rows lack it), and h's history as its row stores it.
   std::ptrdiff_t EntryOf(const PairHistory& h, Vec3* xi_in_row) const;
-  bool Excluded(std::int32_t a, std::int32_t b) const;
+  // Unbroken bonds that joined a and b at the last build: a pair with any is not in the rows.
   int BondsAtBuild(std::int32_t a, std::int32_t b) const;
 
   std::vector<std::uint32_t> offsets_{0};
