@@ -168,10 +168,8 @@ void Simulation::Integrate() {
   const std::int64_t n = static_cast<std::int64_t>(p.size());
   const double limit = w_.settings.max_step_displacement;
   const double alpha = ph.local_damping;
-  const std::vector<Vec3>& reference = w_.damping_reference;
-  if (alpha > 0.0 && !reference.empty() && reference.size() != p.size())
-    throw RunError(fmt::format("damping_reference holds {} velocities for {} particles",
-                               reference.size(), p.size()));
+  const AffineField reference = w_.damping_reference;
+  const bool moving_reference = !reference.IsRest();
   double work_gravity = 0.0, work_drag = 0.0, work_applied = 0.0, damping_loss = 0.0;
   std::int64_t runaway = -1, bad = n;
   // Particles go in groups of kLanes: the translation one by one, then the group's
@@ -185,7 +183,6 @@ void Simulation::Integrate() {
   Quat* __restrict q = p.q.data();
   Vec3* __restrict force = p.force.data();
   Vec3* __restrict torque = p.torque.data();
-  const Vec3* __restrict reference_v = reference.empty() ? nullptr : reference.data();
   const double* __restrict inv_mass = p.inv_mass.data();
   const double* __restrict inv_inertia = p.inv_inertia.data();
   const double* __restrict mass = p.mass.data();
@@ -204,16 +201,14 @@ void Simulation::Integrate() {
     for (std::int64_t i = first; i < end; ++i) {
       // Local non-viscous damping (Physics::local_damping) of a free particle, in this pass
       // rather than one of its own: the particle's arrays are then read once per step.
-      if (damped && inv_mass[i] != 0.0) {
-        const Vec3 motion = reference_v ? Vec3(v[i] - reference_v[i]) : v[i];
-        const Vec3 damping_force = LocalDampingOf(alpha, force[i], motion);
-        const Vec3 damping_torque = LocalDampingOf(alpha, torque[i], omega[i]);
+      const bool damp_this = damped && inv_mass[i] != 0.0;
+      Vec3 damping_force = Vec3::Zero(), damping_torque = Vec3::Zero();
+      if (damp_this) {
+        const Vec3 motion = moving_reference ? Vec3(v[i] - reference.At(x[i])) : v[i];
+        damping_force = LocalDampingOf(alpha, force[i], motion);
+        damping_torque = LocalDampingOf(alpha, torque[i], omega[i]);
         force[i] += damping_force;
         torque[i] += damping_torque;
-        // Its work over the drift below, with v_n+1 and omega_n+1.
-        const Vec3 v_next = v[i] + force[i] * (inv_mass[i] * dt);
-        const Vec3 omega_next = omega[i] + torque[i] * (inv_inertia[i] * dt);
-        damping_loss -= (damping_force.dot(v_next) + damping_torque.dot(omega_next)) * dt;
       }
       // A non-finite force or torque stops the run after this pass; its particle stays put so
       // that the report shows where it was.
@@ -223,6 +218,9 @@ void Simulation::Integrate() {
       }
       v[i] += force[i] * (inv_mass[i] * dt);
       omega[i] += torque[i] * (inv_inertia[i] * dt);
+      // The damping's work over the drift below, with v_n+1 and omega_n+1.
+      if (damp_this)
+        damping_loss -= (damping_force.dot(v[i]) + damping_torque.dot(omega[i])) * dt;
       const Vec3 dx = v[i] * dt;
       // Work of body forces over the drift x_n -> x_n+1 = x_n + v_n+1 dt.
       if (inv_mass[i] > 0.0) {

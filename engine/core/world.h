@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/core/affine_field.h"
 #include "engine/core/blade.h"
 #include "engine/core/bonds.h"
 #include "engine/core/cell.h"
@@ -83,10 +84,12 @@ struct World {
   std::vector<Blade> blades;
   // Per-particle applied loads (used when physics.applied_loads) [N], [N m].
   std::vector<Vec3> applied_force, applied_torque;
-  // The velocity local damping measures each particle's motion against [m/s]; empty: rest.
-  // The damping is not Galilean invariant: measured against rest it resists a deformation a
-  // test rig imposes on the whole sheet, so the rig sets this to that deformation.
-  std::vector<Vec3> damping_reference;
+  // The velocity field local damping measures each particle's motion against; the default is
+  // rest. The damping is not Galilean invariant: measured against rest it resists a
+  // deformation a test rig imposes on the whole sheet, so the rig sets this to that
+  // deformation before each step. A field, not a velocity per particle: the integrator
+  // evaluates it where it reads the particle anyway, instead of a pass of its own.
+  AffineField damping_reference;
   StepSettings settings;
 
   NeighbourList neighbours;

@@ -57,7 +57,7 @@ void CompressionRig::Prepare() {
 
 void CompressionRig::Step() {
   if (drag_tau_ > 0.0) ApplyAffineDrag(w, held_, Field(), drag_tau_);
-  SetDampingReference(w, Field());
+  w.damping_reference = Field();
   sim_.Step();
 }
 

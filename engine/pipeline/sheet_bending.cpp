@@ -116,7 +116,7 @@ BendingResult RunBendingTest(Network net, const BendingSettings& s, const Progre
   w.settings.dt = 0.0;
   AddBondDamping(w, s.bond_damping_ratio);
   w.physics.local_damping = s.local_damping;
-  w.damping_reference.clear();  // damped against rest
+  w.damping_reference = AffineField{};  // damped against rest
   Simulation sim(w);
   BendingResult res;
   if (std::string warn = sim.Prepare(); !warn.empty()) res.warnings.push_back(warn);

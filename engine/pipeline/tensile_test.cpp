@@ -140,7 +140,7 @@ TensileResult RunTensileTest(Network net, const TensileSettings& s, const Progre
       break;
     }
     if (tau > 0.0) ApplyAffineDrag(w, held, field(), tau);
-    SetDampingReference(w, field());
+    w.damping_reference = field();
     sim.Step();
     ++step;
     strain += sign * d_strain;

@@ -273,12 +273,6 @@ double GripPower(const World& w, const Grips& g) {
   return power;
 }
 
-Vec3 AffineField::At(const Vec3& x) const {
-  Vec3 u = Vec3::Zero();
-  u[axis] = u_half * std::clamp((x[axis] - centre) / half_span, -1.0, 1.0);
-  return u;
-}
-
 double FluctuatingKineticEnergy(const World& w, const std::vector<std::uint8_t>& held,
                                 const AffineField& field) {
   const Particles& p = w.particles;
@@ -289,16 +283,6 @@ double FluctuatingKineticEnergy(const World& w, const std::vector<std::uint8_t>&
     e += 0.5 * (p.mass[i] * v.squaredNorm() + p.inertia[i] * p.omega[i].squaredNorm());
   }
   return e;
-}
-
-void SetDampingReference(World& w, const AffineField& field) {
-  if (!(w.physics.local_damping > 0.0)) return;
-  const Particles& p = w.particles;
-  w.damping_reference.resize(p.size());
-  const std::int64_t n = static_cast<std::int64_t>(p.size());
-  // Called every step outside Simulation::Step, so it needs its own small-world rule.
-#pragma omp parallel for schedule(static) if (ThreadsPay(p.size()))
-  for (std::int64_t i = 0; i < n; ++i) w.damping_reference[i] = field.At(p.x[i]);
 }
 
 void ApplyAffineDrag(World& w, const std::vector<std::uint8_t>& held, const AffineField& field,

@@ -16,7 +16,7 @@
 //    the guard) and their dissipation is booked with the bond losses.
 //  - Local non-viscous damping (Cundall 1987; Physics::local_damping), the default: each
 //    force component on a particle is reduced by a fraction of its magnitude while it drives
-//    the motion beyond the imposed affine field (SetDampingReference). It vanishes in
+//    the motion beyond the imposed affine field (World::damping_reference). It vanishes in
 //    equilibrium whatever the velocity, so unlike a drag it carries no load in a non-affine
 //    but steady deformation (a platen pushing the top of a loose mat). Measured against rest
 //    instead, it would brake the imposed stretch itself.
@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/affine_field.h"
 #include "engine/pipeline/network.h"
 
 namespace fibrenet::pipeline {
@@ -134,24 +135,10 @@ void DriveGrips(World& w, const Grips& g, double V, int sign, bool first, double
 double GripTension(const World& w, const Grips& g);
 // Power the grips feed into the sheet in the last step [W].
 double GripPower(const World& w, const Grips& g);
-// The affine velocity field a test imposes along one axis (0 = x, 2 = z):
-//   u_axis(x) = u_half * clamp((x_axis - centre) / half_span, -1, 1).
-// A uniform-rate affine deformation has no acceleration and so no inertial force.
-struct AffineField {
-  int axis = 0;
-  double centre = 0.0, half_span = 1.0, u_half = 0.0;  // [m], [m], [m/s]
-  Vec3 At(const Vec3& x) const;
-};
-
 // Kinetic energy of the particles not held, with the affine velocity subtracted [J]: what
 // the quasi-static guard must bound is the motion beyond the imposed deformation.
 double FluctuatingKineticEnergy(const World& w, const std::vector<std::uint8_t>& held,
                                 const AffineField& field);
-
-// Sets the reference of local damping (World::damping_reference) to the affine field at each
-// particle, so that the damping acts on the motion beyond it. Call before every step while
-// the field changes; a no-op when local damping is off.
-void SetDampingReference(World& w, const AffineField& field);
 
 // Background drag on the motion beyond the affine field (dynamic relaxation): applied force
 // -m_i / tau (v_i - u(x_i)) and torque -I_i / tau omega_i on every particle not held. It

@@ -692,7 +692,8 @@ DriftingOscillator DriftingOscillatorRun(double alpha, double drift, bool moving
   w.particles.x[1].x() += a0;
   for (Vec3& v : w.particles.v) v = Vec3(drift, 0.0, 0.0);
   w.physics.local_damping = alpha;
-  if (moving_reference) w.damping_reference.assign(2, Vec3(drift, 0.0, 0.0));
+  // A field uniform over the cell: its span ends far to the left of it.
+  if (moving_reference) w.damping_reference = AffineField{0, -1.0, 1e-9, drift};
   w.settings.safety = 0.05;
   Simulation sim(w);
   sim.Prepare();
@@ -723,6 +724,45 @@ TEST(LocalDamping, AReferenceMovingWithTheSheetMakesItGalileanInvariant) {
 
   const DriftingOscillator at_rest = DriftingOscillatorRun(alpha, drift, false);
   EXPECT_LT(at_rest.drift_end, 0.99 * drift) << "measured against rest, the drift is braked";
+}
+
+// An imposed stretch: the two spheres of a bonded pair fly apart at the speed of an affine
+// field, and their bond brakes them. Measured against the field, the spheres lag it, so the
+// bond's pull drives the motion beyond it and is cut by alpha all the way to the turn; measured
+// against rest, the pull opposes the motion and is raised by alpha. Energy then puts the peak
+// extensions in the ratio sqrt((1 + alpha) / (1 - alpha)).
+double PeakExtensionOfAStretch(double alpha, bool against_the_field) {
+  World w;
+  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+  w.cell.hi = Vec3(1e-3, 1e-3, 1e-3);
+  AddChain(w, 2, 32e-6);
+  const double speed = 1.0;  // [m/s]; the extension stays near 1e-8 m, in the linear range
+  w.particles.v[0] = Vec3(-speed, 0.0, 0.0);
+  w.particles.v[1] = Vec3(speed, 0.0, 0.0);
+  w.physics.local_damping = alpha;
+  // The field reaches +-speed at the spheres and stays uniform beyond them.
+  const double centre = 0.5 * (w.particles.x[0].x() + w.particles.x[1].x());
+  if (against_the_field) w.damping_reference = AffineField{0, centre, 16e-6, speed};
+  w.settings.safety = 0.05;
+  Simulation sim(w);
+  sim.Prepare();
+  const Particles& p = w.particles;
+  auto extension = [&] { return w.cell.Delta(p.x[0], p.x[1]).x() - 32e-6; };
+  for (int step = 0; step < 20000; ++step) {
+    const double rate_before = p.v[1].x() - p.v[0].x();
+    sim.Step();
+    if (rate_before > 0.0 && p.v[1].x() - p.v[0].x() <= 0.0) return extension();
+  }
+  return 0.0;
+}
+
+TEST(LocalDamping, AnAffineReferenceLetsTheImposedStretchThrough) {
+  const double alpha = 0.5;
+  const double against_field = PeakExtensionOfAStretch(alpha, true);
+  const double against_rest = PeakExtensionOfAStretch(alpha, false);
+  ASSERT_GT(against_rest, 0.0) << "the stretch turns";
+  const double expected = std::sqrt((1.0 + alpha) / (1.0 - alpha));
+  EXPECT_NEAR(against_field / against_rest, expected, 0.02 * expected);
 }
 
 }  // namespace
