@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.h"
+#include "engine/core/morton.h"
 
 namespace fibrenet::bench {
 
@@ -20,16 +21,6 @@ struct PlacedFibre {
   int layer = 0;
   double z = 0.0;  // height of the fibre axis [m]
 };
-
-// Spreads the low 16 bits of v to the even bits of the result (Morton interleave).
-std::uint32_t SpreadBits(std::uint32_t v) {
-  v &= 0xffffu;
-  v = (v | (v << 8)) & 0x00ff00ffu;
-  v = (v | (v << 4)) & 0x0f0f0f0fu;
-  v = (v | (v << 2)) & 0x33333333u;
-  v = (v | (v << 1)) & 0x55555555u;
-  return v;
-}
 
 // Random sequential placement of straight fibres in layers: a fibre is accepted when none
 // of its particles comes closer than `clearance` (in the plane) to a particle of another
@@ -240,7 +231,7 @@ FibreBedInfo BuildFibreBed(const FibreBedSpec& spec, World& w) {
     for (std::size_t f = 0; f < placed.size(); ++f) {
       const auto tx = static_cast<std::uint32_t>(placed[f].cx / tile);
       const auto ty = static_cast<std::uint32_t>(placed[f].cy / tile);
-      key[f] = (static_cast<std::uint64_t>(SpreadBits(tx) | (SpreadBits(ty) << 1)) << 20) |
+      key[f] = (static_cast<std::uint64_t>(MortonKey(tx, ty)) << 20) |
                static_cast<std::uint64_t>(placed[f].layer);
     }
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include <fmt/format.h>
 
 #include "engine/core/energy.h"
 #include "engine/core/error.h"
+#include "engine/core/morton.h"
 #include "engine/core/simulation.h"
 #include "engine/pipeline/pairs.h"
 
@@ -39,6 +41,40 @@ bool Overlaps(const World& w, const ParticleGrid& grid, const std::vector<Vec3>&
     }
   }
   return false;
+}
+
+// The placed fibres again, laid out in memory in the Morton order of the tiles (half the
+// longest fibre wide) that hold their centres. Fibres touch and bond where they lie near each
+// other in the plane; with memory following the plane, the particles a contact or a bond joins
+// are read from nearby memory, and each thread's range of particles is a patch of the sheet
+// (docs/performance.md). Each fibre keeps its particles' positions exactly.
+Network InSpatialOrder(const Network& placed, const std::vector<FibreProperties>& fibres,
+                       const std::vector<Vec3>& centres, const FibreBondOptions& options) {
+  double longest = 0.0;
+  for (const FibreProperties& f : fibres) longest = std::max(longest, f.length);
+  const Vec3 lo = placed.world.cell.lo;
+  const double tile = std::max(0.5 * longest, 1e-12);
+  std::vector<std::uint32_t> key(fibres.size());
+  for (std::size_t f = 0; f < fibres.size(); ++f) {
+    const auto tx = static_cast<std::uint32_t>(std::max(0.0, (centres[f].x() - lo.x()) / tile));
+    const auto ty = static_cast<std::uint32_t>(std::max(0.0, (centres[f].y() - lo.y()) / tile));
+    key[f] = MortonKey(tx, ty);
+  }
+  std::vector<std::size_t> order(fibres.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  Network out;
+  out.world.cell = placed.world.cell;
+  out.world.contact = placed.world.contact;
+  const Particles& p = placed.world.particles;
+  for (const std::size_t f : order) {
+    const FibreRecord& r = placed.fibres[f];
+    const std::vector<Vec3> x(p.x.begin() + r.first_particle,
+                              p.x.begin() + r.first_particle + r.particle_count);
+    out.AddFibre(fibres[f], x, options);
+  }
+  return out;
 }
 
 }  // namespace
@@ -125,7 +161,7 @@ Network PlaceFibres(const SheetSpec& sheet, const FormingSettings& forming,
                                  sheet.inertia_scale};
   int overlapping = 0;
   std::vector<std::int32_t> near;
-  std::vector<Vec3> x;
+  std::vector<Vec3> x, centres;
   for (const FibreProperties& f : fibres) {
     const int n = ParticlesPerFibre(f.length, sheet.particle_spacing * f.diameter);
     std::vector<Vec3> local = PointsAlong(Centreline(f), n);
@@ -135,6 +171,7 @@ Network PlaceFibres(const SheetSpec& sheet, const FormingSettings& forming,
     for (Vec3& c : local) c -= centroid;
     const double r = 0.5 * f.diameter;
     bool clear = false;
+    Vec3 at_placed = Vec3::Zero();
     for (int attempt = 0; attempt < forming.placement_attempts && !clear; ++attempt) {
       const Quat q = Orient(forming.orientation, rng);
       x.resize(n);
@@ -150,9 +187,11 @@ Network PlaceFibres(const SheetSpec& sheet, const FormingSettings& forming,
       const Vec3 at(ux * sheet.Lx, uy * sheet.Ly,
                     z_max > z_min ? z_min + uz * (z_max - z_min) : 0.5 * (z_min + z_max));
       for (Vec3& c : x) c += at;
+      at_placed = at;
       clear = !Overlaps(w, grid, x, r, near);
     }
     overlapping += !clear;
+    centres.push_back(at_placed);
     const std::int32_t first = static_cast<std::int32_t>(w.particles.size());
     net.AddFibre(f, x, options);
     for (int k = 0; k < n; ++k) grid.Insert(first + k, w.particles.x[first + k]);
@@ -161,7 +200,7 @@ Network PlaceFibres(const SheetSpec& sheet, const FormingSettings& forming,
     stats->box_height = box_height;
     stats->overlapping_fibres = overlapping;
   }
-  return net;
+  return InSpatialOrder(net, fibres, centres, options);
 }
 
 FormingResult Settle(Network& net, const SheetSpec& sheet, const FormingSettings& forming,
