@@ -13,16 +13,27 @@
 namespace fibrenet::pipeline {
 namespace {
 
-TEST(KallmesCorte, RandomPlanarNetworkMatchesWithinFivePercent) {
+// 1000 straight fibres of 0.5 mm and 50 ng on 4 mm^2, placed flat.
+SheetSpec ThinSheet() {
   SheetSpec sheet;
   sheet.Lx = sheet.Ly = 2e-3;
   sheet.fibres.length = Distribution::Fixed(0.5e-3);
   sheet.fibres.diameter = Distribution::Fixed(20e-6);
   sheet.fibres.coarseness = Distribution::Fixed(1e-7);
-  sheet.basis_weight = 0.0125;  // 1000 fibres of 50 ng on 4 mm^2
+  sheet.basis_weight = 0.0125;
+  return sheet;
+}
+
+FormingSettings FlatPlacement() {
   FormingSettings forming;
   forming.orientation = Orientation::kPlanar;
   forming.consistency = 0.005;
+  return forming;
+}
+
+TEST(KallmesCorte, RandomPlanarNetworkMatchesWithinFivePercent) {
+  const SheetSpec sheet = ThinSheet();
+  const FormingSettings forming = FlatPlacement();
   double sum = 0.0, expected = 0.0;
   const int seeds = 3;
   for (int seed = 1; seed <= seeds; ++seed) {
@@ -64,17 +75,8 @@ TEST(KallmesCorte, ExpectationScalesWithFibreLengthSquared) {
 // fibre count, is 1 - 1/sqrt(2) = 0.29 for fibres in random order. (The median, since the
 // order cannot follow the periodic cell across its edges.)
 TEST(Placement, FibresThatMeetLieNearEachOtherInMemory) {
-  SheetSpec sheet;
-  sheet.Lx = sheet.Ly = 2e-3;
-  sheet.fibres.length = Distribution::Fixed(0.5e-3);
-  sheet.fibres.diameter = Distribution::Fixed(20e-6);
-  sheet.fibres.coarseness = Distribution::Fixed(1e-7);
-  sheet.basis_weight = 0.0125;
-  FormingSettings forming;
-  forming.orientation = Orientation::kPlanar;
-  forming.consistency = 0.005;
   std::mt19937_64 rng(1);
-  const Network net = PlaceFibres(sheet, forming, rng);
+  const Network net = PlaceFibres(ThinSheet(), FlatPlacement(), rng);
   ASSERT_EQ(net.CheckInvariants(), "");
   const Particles& p = net.world.particles;
   std::vector<Vec3> centre;
