@@ -97,7 +97,8 @@ struct FormingResult {
 
 // Samples fibres until their mass is nearest the sheet's basis weight times the cell area
 // and places them in the forming box (no dynamics). The cell, fibres and contact law of the
-// returned network are set; no physics is switched on yet.
+// returned network are set; no physics is switched on yet. The fibres lie in memory in the
+// Morton order of their centres in the plane, not in the order they were drawn.
 Network PlaceFibres(const SheetSpec& sheet, const FormingSettings& forming,
                     std::mt19937_64& rng, PlacementStats* stats = nullptr);
 
