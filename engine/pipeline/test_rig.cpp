@@ -236,8 +236,9 @@ Grips MakeGrips(const World& w, const StripEnds& ends, double grip_length) {
 
 void DriveGrips(World& w, const Grips& g, double V, int sign, bool first, double strain) {
   Particles& p = w.particles;
-  const double centre = 0.5 * (g.x_left + g.x_right);
-  const double half_span = 0.5 * g.span * (1.0 + strain);
+  // The stretch the grips impose, as the tensile test's damping reference states it.
+  const AffineField stretch{0, 0.5 * (g.x_left + g.x_right), 0.5 * g.span * (1.0 + strain),
+                            sign * 0.5 * V};
   std::vector<std::uint8_t> held(p.size(), 0);
   for (const auto* side : {&g.left, &g.right}) {
     const double direction = side == &g.left ? -1.0 : 1.0;
@@ -250,8 +251,7 @@ void DriveGrips(World& w, const Grips& g, double V, int sign, bool first, double
   }
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (held[i]) continue;
-    const double s = std::clamp((p.x[i].x() - centre) / half_span, -1.0, 1.0);
-    const double affine = sign * 0.5 * V * s;
+    const double affine = stretch.At(p.x[i]).x();
     if (first)
       p.v[i].x() = affine;
     else
