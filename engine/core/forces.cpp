@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
+#include "engine/core/parallel.h"
 #include "engine/interactions/beam_bond_lanes.h"
 #include "engine/interactions/contact_lanes.h"
 
@@ -316,42 +318,89 @@ void ClearHistory(Vec3& xi) {
   if (xi.x() != 0.0 || xi.y() != 0.0 || xi.z() != 0.0) xi.setZero();
 }
 
-// One rigid surface against every free particle: touch(i) gives the particle's centre-to-
-// surface gap and the normal pointing into it. Adds the forces and torques, returns the force
-// the particles exert on the surface, and books the losses.
+// One rigid surface against the free particles: touch(i) gives the particle's centre-to-
+// surface gap and the normal pointing into it. Checks every particle, or only those of
+// `reach` (ascending; every other particle is known to be apart, its history clear). Each
+// thread takes its static share of all the particles either way, so the reductions are summed
+// in the same order. Adds the forces and torques, returns the force the particles exert on
+// the surface, and books the losses.
 template <class TouchOf>
 Vec3 AccumulateSurface(World& w, const ContactParams& law, TouchOf touch,
                        const Vec3& surface_velocity, std::vector<Vec3>& history, bool friction,
-                       double hard_stiffness, double hard_gap, StepLosses& losses) {
+                       double hard_stiffness, double hard_gap,
+                       const std::vector<std::int32_t>* reach, StepLosses& losses) {
   Particles& p = w.particles;
   const std::int64_t n = static_cast<std::int64_t>(p.size());
   const double dt = w.settings.dt;
   if (history.size() != p.size()) history.assign(p.size(), Vec3::Zero());
+  const std::int32_t* members = reach ? reach->data() : nullptr;
+  const std::int32_t* members_end = reach ? members + reach->size() : nullptr;
   double fx = 0.0, fy = 0.0, fz = 0.0, damping = 0.0, slip = 0.0, min_ratio = 1.0;
-#pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, damping, slip) \
-    reduction(min : min_ratio)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Blade::Touch t = touch(i);
-    // A fixed particle's motion is prescribed: surfaces act on free particles only.
-    if (t.gap >= p.radius[i] || p.inv_mass[i] == 0.0) {
-      ClearHistory(history[i]);
-      continue;
+#pragma omp parallel reduction(+ : fx, fy, fz, damping, slip) reduction(min : min_ratio)
+  {
+    std::int64_t first, end;
+    std::tie(first, end) = StaticShare(n, ThreadId(), TeamSize());
+    if (members) {
+      const std::int32_t* from = std::lower_bound(members, members_end, first);
+      const std::int32_t* to = std::lower_bound(from, members_end, end);
+      first = from - members;
+      end = to - members;
     }
-    const SurfaceResult r = SurfaceContact(w, law, i, t.normal, t.gap, surface_velocity, history[i],
-                                           friction, hard_stiffness, hard_gap);
-    p.force[i] -= r.on_surface;
-    p.torque[i] += r.torque;
-    fx += r.on_surface.x();
-    fy += r.on_surface.y();
-    fz += r.on_surface.z();
-    damping += r.damping_power * dt;
-    slip += r.slip_loss;
-    min_ratio = std::min(min_ratio, std::max(t.gap, 5e-4 * p.radius[i]) / p.radius[i]);
+    for (std::int64_t k = first; k < end; ++k) {
+      const std::int64_t i = members ? members[k] : k;
+      const Blade::Touch t = touch(i);
+      // A fixed particle's motion is prescribed: surfaces act on free particles only.
+      if (t.gap >= p.radius[i] || p.inv_mass[i] == 0.0) {
+        ClearHistory(history[i]);
+        continue;
+      }
+      const SurfaceResult r = SurfaceContact(w, law, i, t.normal, t.gap, surface_velocity,
+                                             history[i], friction, hard_stiffness, hard_gap);
+      p.force[i] -= r.on_surface;
+      p.torque[i] += r.torque;
+      fx += r.on_surface.x();
+      fy += r.on_surface.y();
+      fz += r.on_surface.z();
+      damping += r.damping_power * dt;
+      slip += r.slip_loss;
+      min_ratio = std::min(min_ratio, std::max(t.gap, 5e-4 * p.radius[i]) / p.radius[i]);
+    }
   }
   losses.damping += damping;
   losses.friction += slip;
   losses.min_contact_ratio = std::min(losses.min_contact_ratio, min_ratio);
   return Vec3(fx, fy, fz);
+}
+
+// The particles a wall can touch before the neighbour list is built again or the wall has
+// moved by half the skin, whichever comes first; null (check them all) without a built list.
+// Since the list's build every particle has moved by at most half the skin, so by at most a
+// skin from where it is now: one further than 1.5 skins from the surface's nearest point (the
+// relief's highest) cannot reach it while the wall moves by less than half a skin. The others'
+// histories are cleared, as a check that found them apart would.
+const std::vector<std::int32_t>* WallReachOf(World& w, Wall& wall) {
+  const Particles& p = w.particles;
+  const NeighbourList& nl = w.neighbours;
+  if (!w.physics.contacts || nl.Stale(p.size())) return nullptr;
+  WallReach& reach = wall.reach;
+  const double skin = nl.skin();
+  if (reach.list_build == nl.build_id() && reach.side == wall.side &&
+      reach.relief == wall.relief && std::abs(wall.z - reach.z) <= 0.5 * skin)
+    return &reach.particles;
+  if (wall.history.size() != p.size()) wall.history.assign(p.size(), Vec3::Zero());
+  const double nearest = wall.z + wall.side * (wall.relief ? wall.relief->Max() : 0.0);
+  reach.particles.clear();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if ((p.x[i].z() - nearest) * wall.side < p.radius[i] + 1.5 * skin)
+      reach.particles.push_back(static_cast<std::int32_t>(i));
+    else
+      ClearHistory(wall.history[i]);
+  }
+  reach.list_build = nl.build_id();
+  reach.z = wall.z;
+  reach.side = wall.side;
+  reach.relief = wall.relief;
+  return &reach.particles;
 }
 
 }  // namespace
@@ -369,7 +418,7 @@ void AccumulateWallForces(World& w, StepLosses& losses) {
     };
     wall.reaction = AccumulateSurface(w, law, touch, Vec3(0.0, 0.0, wall.vz), wall.history,
                                       w.physics.friction && wall.friction, wall.hard_stiffness,
-                                      wall.hard_gap, losses);
+                                      wall.hard_gap, WallReachOf(w, wall), losses);
     // Energy the moving wall feeds in: force on the particles times the wall's travel.
     wall.work += -wall.reaction.z() * wall.vz * w.settings.dt;
   }
@@ -382,7 +431,7 @@ void AccumulateBladeForces(World& w, StepLosses& losses) {
     auto touch = [&](std::int64_t i) { return blade.Nearest(p.x[i]); };
     blade.reaction = AccumulateSurface(w, law, touch, blade.velocity, blade.history,
                                        w.physics.friction && blade.friction, blade.hard_stiffness,
-                                       blade.hard_gap, losses);
+                                       blade.hard_gap, nullptr, losses);
     blade.work += -blade.reaction.dot(blade.velocity) * w.settings.dt;
   }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -24,6 +25,8 @@ struct Grid {
 bool RowHolds(std::int64_t owner, std::int64_t partner) {
   return ((owner + partner) & 1) == 0 ? owner < partner : owner > partner;
 }
+
+std::atomic<std::uint64_t> next_build_id{1};
 
 int ClampCell(double t, int n) {
   const int c = static_cast<int>(std::floor(t));
@@ -228,6 +231,7 @@ void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bon
   x_at_build_ = p.x;
   valid_ = true;
   ++builds_;
+  build_id_ = next_build_id.fetch_add(1, std::memory_order_relaxed);
   if (parked_) RestoreParked(n);
 }
 

@@ -60,6 +60,10 @@ class NeighbourList {
   const Vec3& History(std::size_t k) const { return history_[k]; }
   const std::vector<std::int32_t>& partners() const { return partners_; }
   std::size_t builds() const { return builds_; }
+  // An id no other build in this process has had (0: no rows). Every particle lies within
+  // half the skin of where it lay at the build with this id: what a world's walls rely on to
+  // check only the particles near them (WallReach).
+  std::uint64_t build_id() const { return build_id_; }
   bool parked() const { return parked_; }
   double skin() const { return skin_; }
   std::size_t MemoryBytes() const;
@@ -100,6 +104,7 @@ class NeighbourList {
   double skin_ = 0.0;
   bool valid_ = false;
   std::size_t builds_ = 0;
+  std::uint64_t build_id_ = 0;
   // A parked list's history, for the particle count it was parked with.
   bool parked_ = false;
   std::vector<PairHistory> parked_history_;

@@ -2,7 +2,10 @@
 // and the `#pragma omp` lines elsewhere are ignored by the compiler.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
+#include <utility>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -54,6 +57,17 @@ class ScopedThreadCount {
  private:
   int saved_;
 };
+
+// The share [first, end) of n iterations that `thread` of a team of `team` takes under
+// OpenMP's static schedule without a chunk size, as libgomp splits it: n / team each, the
+// first n % team threads one more. A loop over a subset of the particles that takes, on each
+// thread, the members of that thread's share of all of them sums its reductions in the order
+// a loop over all of them would.
+inline std::pair<std::int64_t, std::int64_t> StaticShare(std::int64_t n, int thread, int team) {
+  const std::int64_t each = n / team, extra = n % team, t = thread;
+  const std::int64_t first = t * each + std::min(t, extra);
+  return {first, first + each + (t < extra ? 1 : 0)};
+}
 
 // Worlds with fewer particles than this step on one thread: below it the fork and join of
 // each parallel region costs more than the work it shares (docs/performance.md), and a core

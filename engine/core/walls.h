@@ -4,6 +4,7 @@
 // particle (distance 2 h between a particle and its image, radii R and R).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -11,6 +12,18 @@
 #include "engine/core/types.h"
 
 namespace fibrenet {
+
+// The particles a wall can touch until the neighbour list's next build or the wall's next half
+// skin of travel, whichever comes first (forces.cpp): a step checks these instead of every
+// particle. Found with the list of that build id (0: never found), for the wall's side and
+// relief at the time.
+struct WallReach {
+  std::vector<std::int32_t> particles;  // ascending
+  std::uint64_t list_build = 0;
+  double z = 0.0;  // the wall's position when they were found [m]
+  int side = 0;
+  std::shared_ptr<const Relief> relief;
+};
 
 struct Wall {
   double z = 0.0;        // position [m]
@@ -31,6 +44,7 @@ struct Wall {
   double work = 0.0;
   // Tangential history of each particle against this wall (sized on first use).
   std::vector<Vec3> history;
+  WallReach reach;
 };
 
 }  // namespace fibrenet
