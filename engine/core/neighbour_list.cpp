@@ -5,6 +5,9 @@
 #include <atomic>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
+
+#include "engine/core/parallel.h"
 
 namespace fibrenet {
 
@@ -154,7 +157,9 @@ void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bon
     for (std::size_t i = 0; i < n; ++i) cell_members_[fill[cell_of_[i]]++] = static_cast<int>(i);
   }
 
-  // Neighbour cells of a cell, without repeats (a periodic direction may have < 3 cells).
+  // Neighbour cells of a cell, without repeats: a periodic direction with fewer than 3 cells
+  // meets the same cell from both sides.
+  const bool repeats = (cell.periodic_x && grid.nx < 3) || (cell.periodic_y && grid.ny < 3);
   auto neighbour_cells = [&](int c, std::array<int, 27>& out) {
     const int cx = c % grid.nx, cy = (c / grid.nx) % grid.ny, cz = c / (grid.nx * grid.ny);
     int count = 0;
@@ -177,16 +182,16 @@ void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bon
         }
       }
     }
+    if (!repeats) return count;
     std::sort(out.begin(), out.begin() + count);
     return static_cast<int>(std::unique(out.begin(), out.begin() + count) - out.begin());
   };
 
-  // Two passes over rows (count, then fill) so that rows can be built in parallel.
-  scratch_offsets_.assign(n + 1, 0);
-  auto scan_row = [&](std::size_t i, std::int32_t* out) {
+  // Appends row i's partners, sorted, to `row`.
+  auto scan_row = [&](std::size_t i, std::vector<std::int32_t>& row) {
+    const std::size_t start = row.size();
     std::array<int, 27> cells;
     const int count = neighbour_cells(cell_of_[i], cells);
-    std::uint32_t found = 0;
     for (int k = 0; k < count; ++k) {
       for (int m = cell_start_[cells[k]]; m < cell_start_[cells[k] + 1]; ++m) {
         const std::int32_t j = cell_members_[m];
@@ -194,35 +199,53 @@ void NeighbourList::Build(const Particles& p, const Cell& cell, const Bonds& bon
         const double reach = p.radius[i] + p.radius[j] + skin;
         if (cell.Delta(p.x[i], p.x[j]).squaredNorm() >= reach * reach) continue;
         if (BondsAtBuild(static_cast<std::int32_t>(i), j) > 0) continue;
-        if (out) out[found] = j;
-        ++found;
+        row.push_back(j);
       }
     }
-    if (out) std::sort(out, out + found);
-    return found;
+    std::sort(row.begin() + static_cast<std::ptrdiff_t>(start), row.end());
   };
+
+  // Each thread scans its static share of the rows once, into a buffer of its own; the rows
+  // are then laid out from their counts and each thread copies its buffer in.
   const std::int64_t rows = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < rows; ++i) scratch_offsets_[i + 1] = scan_row(i, nullptr);
-  for (std::size_t i = 0; i < n; ++i) scratch_offsets_[i + 1] += scratch_offsets_[i];
-  scratch_partners_.resize(scratch_offsets_[n]);
-  scratch_history_.assign(scratch_offsets_[n], Vec3::Zero());
-  owners_.resize(scratch_offsets_[n]);
+  scratch_offsets_.assign(n + 1, 0);
+  if (thread_rows_.size() < static_cast<std::size_t>(ThreadCount()))
+    thread_rows_.resize(static_cast<std::size_t>(ThreadCount()));
   // Indices are stable while the particle count is, so the old rows still apply.
   const bool carry = offsets_.size() == n + 1 && !partners_.empty();
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < rows; ++i) {
-    scan_row(i, scratch_partners_.data() + scratch_offsets_[i]);
-    std::fill(owners_.begin() + scratch_offsets_[i], owners_.begin() + scratch_offsets_[i + 1],
-              static_cast<std::int32_t>(i));
-    if (!carry) continue;
-    // Carry the tangential history of pairs present before (both rows are sorted).
-    std::uint32_t old = offsets_[i];
-    const std::uint32_t old_end = offsets_[i + 1];
-    for (std::uint32_t k = scratch_offsets_[i]; k < scratch_offsets_[i + 1]; ++k) {
-      while (old < old_end && partners_[old] < scratch_partners_[k]) ++old;
-      if (old < old_end && partners_[old] == scratch_partners_[k])
-        scratch_history_[k] = history_[old];
+#pragma omp parallel
+  {
+    std::int64_t first, end;
+    std::tie(first, end) = StaticShare(rows, ThreadId(), TeamSize());
+    std::vector<std::int32_t>& found = thread_rows_[static_cast<std::size_t>(ThreadId())];
+    found.clear();
+    for (std::int64_t i = first; i < end; ++i) {
+      const std::size_t before = found.size();
+      scan_row(static_cast<std::size_t>(i), found);
+      scratch_offsets_[i + 1] = static_cast<std::uint32_t>(found.size() - before);
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::size_t i = 0; i < n; ++i) scratch_offsets_[i + 1] += scratch_offsets_[i];
+      scratch_partners_.resize(scratch_offsets_[n]);
+      scratch_history_.assign(scratch_offsets_[n], Vec3::Zero());
+      owners_.resize(scratch_offsets_[n]);
+    }
+    if (first < end)
+      std::copy(found.begin(), found.end(), scratch_partners_.begin() + scratch_offsets_[first]);
+    for (std::int64_t i = first; i < end; ++i) {
+      std::fill(owners_.begin() + scratch_offsets_[i], owners_.begin() + scratch_offsets_[i + 1],
+                static_cast<std::int32_t>(i));
+      if (!carry) continue;
+      // Carry the tangential history of pairs present before (both rows are sorted).
+      std::uint32_t old = offsets_[i];
+      const std::uint32_t old_end = offsets_[i + 1];
+      for (std::uint32_t k = scratch_offsets_[i]; k < scratch_offsets_[i + 1]; ++k) {
+        while (old < old_end && partners_[old] < scratch_partners_[k]) ++old;
+        if (old < old_end && partners_[old] == scratch_partners_[k])
+          scratch_history_[k] = history_[old];
+      }
     }
   }
   offsets_.swap(scratch_offsets_);
@@ -278,8 +301,14 @@ std::size_t NeighbourList::MemoryBytes() const {
          excl_partners_.capacity() * 4 +
          (cell_of_.capacity() + cell_start_.capacity() + cell_members_.capacity()) * 4 +
          scratch_offsets_.capacity() * 4 + scratch_partners_.capacity() * 4 +
-         scratch_history_.capacity() * sizeof(Vec3) +
+         scratch_history_.capacity() * sizeof(Vec3) + ThreadRowsBytes() +
          parked_history_.capacity() * sizeof(PairHistory);
+}
+
+std::size_t NeighbourList::ThreadRowsBytes() const {
+  std::size_t bytes = 0;
+  for (const std::vector<std::int32_t>& rows : thread_rows_) bytes += rows.capacity() * 4;
+  return bytes;
 }
 
 std::vector<PairHistory> NeighbourList::ExportHistory() const {

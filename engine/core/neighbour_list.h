@@ -87,6 +87,7 @@ class NeighbourList {
   std::ptrdiff_t EntryOf(const PairHistory& h, Vec3* xi_in_row) const;
   // Unbroken bonds that joined a and b at the last build: a pair with any is not in the rows.
   int BondsAtBuild(std::int32_t a, std::int32_t b) const;
+  std::size_t ThreadRowsBytes() const;
 
   std::vector<std::uint32_t> offsets_{0};
   std::vector<std::int32_t> partners_;
@@ -101,6 +102,7 @@ class NeighbourList {
   std::vector<std::uint32_t> scratch_offsets_;
   std::vector<std::int32_t> scratch_partners_;
   std::vector<Vec3> scratch_history_;
+  std::vector<std::vector<std::int32_t>> thread_rows_;  // each thread's rows during a build
   double skin_ = 0.0;
   bool valid_ = false;
   std::size_t builds_ = 0;

@@ -89,17 +89,23 @@ TEST(NeighbourList, FindsExactlyTheBruteForcePairs) {
     double width, height;
     bool periodic;
   };
-  // Dense and sparse, periodic and open, and cells only two or three grid cells wide.
+  // Dense and sparse, periodic and open, and cells only two or three grid cells wide; built
+  // by one, two and three threads, each of which scans its share of the rows.
   for (const Setup s : {Setup{400, 0.5e-3, 0.1e-3, true}, Setup{400, 0.5e-3, 0.1e-3, false},
                         Setup{150, 0.13e-3, 0.05e-3, true}, Setup{100, 0.17e-3, 0.0, true},
-                        Setup{200, 0.6e-3, 0.3e-3, true}}) {
+                        Setup{200, 0.6e-3, 0.3e-3, true}, Setup{5000, 1.2e-3, 0.1e-3, true}}) {
     World w = RandomWorld(rng, s.n, s.width, s.height, s.periodic);
     AddSomeBonds(w, rng);
     const double skin = 8e-6;
-    w.neighbours.Build(w.particles, w.cell, w.bonds, skin);
     const Pairs brute = BruteForcePairs(w.particles, w.cell, w.bonds, skin);
-    EXPECT_EQ(ListedPairs(w.neighbours, w.particles.size()), brute) << s.n << " " << s.width;
     EXPECT_FALSE(brute.empty());
+    for (int threads : {1, 2, 3}) {
+      const ScopedThreadCount team(threads);
+      NeighbourList list;
+      list.Build(w.particles, w.cell, w.bonds, skin);
+      EXPECT_EQ(ListedPairs(list, w.particles.size()), brute)
+          << s.n << " " << s.width << ", " << threads << " threads";
+    }
   }
 }
 
