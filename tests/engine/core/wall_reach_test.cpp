@@ -90,27 +90,31 @@ TEST(WallReach, EveryParticleThatTouchesAWallIsInItsReach) {
   EXPECT_LT(largest_reach, n / 2);  // the reach is a part of the particles, not all of them
 }
 
-// A lone sphere 3 skins beyond touching a top platen, at rest.
-World LoneSphereUnderAPlaten() {
-  World w;
-  w.cell.lo = Vec3(0.0, 0.0, -1e-3);
-  w.cell.hi = Vec3(1e-3, 1e-3, 1e-3);
-  w.physics.contacts = true;
-  w.particles.Add(Vec3(5e-4, 5e-4, 0.0), kRadius, kMass, 0);
-  Wall top;
-  top.side = -1;
-  top.z = kRadius + 3.0 * 0.5 * kRadius;  // skin: 0.5 radii
-  w.walls = {top};
-  return w;
-}
+// A lone sphere 3 skins beyond touching a top platen, at rest, after one step: outside the
+// platen's reach.
+class WallReachOfALoneSphere : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    w.cell.lo = Vec3(0.0, 0.0, -1e-3);
+    w.cell.hi = Vec3(1e-3, 1e-3, 1e-3);
+    w.physics.contacts = true;
+    w.particles.Add(Vec3(5e-4, 5e-4, 0.0), kRadius, kMass, 0);
+    Wall top;
+    top.side = -1;
+    top.z = kRadius + 3.0 * 0.5 * kRadius;  // skin: 0.5 radii
+    w.walls = {top};
+    sim.Prepare();
+    sim.Step();
+    ASSERT_FALSE(InReach(w.walls[0], 0));
+    builds = w.neighbours.builds();
+  }
 
-TEST(WallReach, AWallThatJumpsNearerFindsItsReachAgain) {
-  World w = LoneSphereUnderAPlaten();
-  Simulation sim(w);
-  sim.Prepare();
-  sim.Step();
-  ASSERT_FALSE(InReach(w.walls[0], 0));
-  const std::size_t builds = w.neighbours.builds();
+  World w;
+  Simulation sim{w};
+  std::size_t builds = 0;
+};
+
+TEST_F(WallReachOfALoneSphere, AWallThatJumpsNearerFindsItsReachAgain) {
   w.walls[0].z = 0.8 * kRadius;  // the platen jumps into the sphere
   sim.Step();
   EXPECT_EQ(w.neighbours.builds(), builds);  // the sphere has not moved: no build
@@ -119,13 +123,7 @@ TEST(WallReach, AWallThatJumpsNearerFindsItsReachAgain) {
   EXPECT_GT(w.walls[0].reaction.z(), 0.0);
 }
 
-TEST(WallReach, AParticleThatJumpsIntoAWallIsFound) {
-  World w = LoneSphereUnderAPlaten();
-  Simulation sim(w);
-  sim.Prepare();
-  sim.Step();
-  ASSERT_FALSE(InReach(w.walls[0], 0));
-  const std::size_t builds = w.neighbours.builds();
+TEST_F(WallReachOfALoneSphere, AParticleThatJumpsIntoAWallIsFound) {
   w.particles.x[0].z() = w.walls[0].z - 0.8 * kRadius;  // the sphere jumps into the platen
   sim.Step();
   EXPECT_GT(w.neighbours.builds(), builds);
