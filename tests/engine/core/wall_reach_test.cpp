@@ -65,7 +65,7 @@ TEST(WallReach, EveryParticleThatTouchesAWallIsInItsReach) {
   Simulation sim(w);
   sim.Prepare();
   const std::size_t n = w.particles.size();
-  std::size_t touches = 0, checked = 0, largest_reach = 0;
+  std::size_t touches = 0, largest_reach = 0;
   for (int step = 0; step < 2000; ++step) {
     // The step's forces come from the positions before it; its reach is the one it used.
     const std::vector<Vec3> x = w.particles.x;
@@ -78,14 +78,12 @@ TEST(WallReach, EveryParticleThatTouchesAWallIsInItsReach) {
       for (std::size_t i = 0; i < n; ++i) {
         if ((x[i].z() - z[side]) * wall.side >= kRadius) continue;
         ++touches;
-        checked += InReach(wall, i) ? 1 : 0;
         ASSERT_TRUE(InReach(wall, i)) << "particle " << i << " touches wall " << side
                                       << " at step " << step << " outside its reach";
       }
     }
   }
   EXPECT_GT(touches, 1000u);
-  EXPECT_EQ(checked, touches);
   EXPECT_GT(w.neighbours.builds(), 10u);
   EXPECT_LT(largest_reach, n / 2);  // the reach is a part of the particles, not all of them
 }
