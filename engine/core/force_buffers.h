@@ -3,8 +3,9 @@
 // thread. Each thread adds straight into the particle arrays when the particle lies in its
 // own range, and queues the contribution otherwise; after the loop each thread applies the
 // queues aimed at its range, from thread 0's queue up. Pair loops hand each thread the
-// interactions of its own range (rows of the neighbour list, the bonds of its particles), so
-// with particles ordered in space only pairs that straddle a range boundary are queued.
+// interactions of its own range (rows of the neighbour list; an equal share of the bonds in
+// their first particle's order, see BondRange), so with particles ordered in space only pairs
+// that straddle a range boundary are queued.
 //
 // This replaced one full force and torque copy per extra thread, summed over all particles
 // every step: that cost 48 bytes per particle per thread and a pass over all of them; the
@@ -101,10 +102,12 @@ class ForceBuffers {
     return {bounds_[r], bounds_[r + 1]};
   }
   // Bonds handed to range r: BondOrder()[first..second). With one range, every bond in id
-  // order (the serial loop). With more, the bonds whose first particle lies in the range,
-  // in the order of that particle (ties by id): each thread's work follows its particles,
-  // so the ranges get equal shares of the fibres' own bonds and of the fibre-fibre bonds
-  // (appended after them), and a range walks its particles' data in order.
+  // order (the serial loop). With more, every bond in the order of its first particle (ties
+  // by id), cut into equal counts: a range walks its particles' data in order, and the
+  // ranges do equal work although a fibre-fibre bond's first particle is its lower index,
+  // so that owning a bond by its first particle would give the low range every bond that
+  // crosses to a high one. A bond whose first particle lies in another range's particles
+  // (between a cut and that range's end) queues its force there.
   std::pair<std::int64_t, std::int64_t> BondRange(int r) const {
     return {bond_bounds_[r], bond_bounds_[r + 1]};
   }
@@ -160,11 +163,7 @@ class ForceBuffers {
     std::stable_sort(bond_order_.begin(), bond_order_.end(),
                      [&](std::int32_t a, std::int32_t b) { return bonds.i[a] < bonds.i[b]; });
     for (int r = 1; r < ranges_; ++r)
-      bond_bounds_[r] = std::partition_point(bond_order_.begin(), bond_order_.end(),
-                                             [&](std::int32_t b) {
-                                               return bonds.i[b] < bounds_[r];
-                                             }) -
-                        bond_order_.begin();
+      bond_bounds_[r] = static_cast<std::int64_t>(nb * static_cast<std::size_t>(r) / ranges_);
   }
 
   std::vector<Vec3>* force_ = nullptr;
