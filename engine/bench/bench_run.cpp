@@ -1,5 +1,6 @@
 #include "engine/bench/bench_run.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
 
 #include <fstream>
@@ -48,6 +49,11 @@ double PeakRssBytes() {
 }
 
 bool ResetPeakRss() {
+#ifdef __GLIBC__
+  // Hand the heap's free memory back first: the high-water mark restarts from the resident
+  // set, which otherwise keeps what an earlier, larger run freed.
+  malloc_trim(0);
+#endif
   std::ofstream clear("/proc/self/clear_refs");
   if (!clear) return false;
   clear << "5";
