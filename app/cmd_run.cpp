@@ -117,7 +117,8 @@ int Run(const RunOptions& o) {
   // The overrides are part of what made the networks, as the campaigns' stage keys have it.
   std::string identity = scene_text;
   for (const campaigns::Override& v : overrides)
-    identity += fmt::format("\n{} = {:.17g}", v.path, v.value);
+    identity += v.flag ? fmt::format("\n{} = {}", v.path, *v.flag)
+                       : fmt::format("\n{} = {:.17g}", v.path, v.value);
   const campaigns::SnapshotOrigin origin{o.scene, campaigns::HashText(identity), spec.seed};
   std::optional<campaigns::StageSnapshot> start;
   if (!o.from.empty()) {
@@ -184,7 +185,7 @@ void AddRunCommand(CLI::App& app, Context& context) {
   cmd->add_option("--threads", options->threads, "OpenMP threads (default: all)")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--set", options->overrides,
-                  "Override a numeric scene key, KEY=VALUE (dotted path, repeatable)");
+                  "Override a scene key, KEY=NUMBER or KEY=true|false (dotted path, repeatable)");
   cmd->add_option("--progress-interval", options->progress_interval_s,
                   "Seconds between progress lines on stderr")
       ->check(CLI::Range(0.1, 3600.0));

@@ -51,7 +51,7 @@ void ApplyOverride(toml::table& root, const Override& o, const std::string& file
   if (parts.empty()) fail("empty key path");
   for (const auto& p : parts)
     if (p.empty()) fail("empty component in the dotted key path");
-  if (!std::isfinite(o.value))
+  if (!o.flag && !std::isfinite(o.value))
     fail(fmt::format("{} is not accepted; accepted: a finite number in the key's range", o.value));
   toml::table* t = &root;
   std::string prefix;
@@ -88,8 +88,16 @@ void ApplyOverride(toml::table& root, const Override& o, const std::string& file
   if (old && old->is_table())
     fail(fmt::format("'{}' is a table; override one of its numbers (e.g. '{}.mean')", o.path,
                      o.path));
+  if (o.flag) {
+    if (old && !old->is_boolean())
+      fail("the key is not a switch; accepted: a number (true and false set switches)");
+    t->insert_or_assign(leaf, *o.flag);
+    return;
+  }
+  if (old && old->is_boolean())
+    fail("the key is a switch; accepted: true or false");
   if (old && !old->is_number())
-    fail("the key holds a non-numeric value; only numeric keys can be overridden");
+    fail("the key holds a non-numeric value; only numbers and switches can be overridden");
   const bool integral = std::nearbyint(o.value) == o.value && std::abs(o.value) < 9e15;
   if ((!old || old->is_integer()) && integral)
     t->insert_or_assign(leaf, static_cast<std::int64_t>(o.value));
@@ -433,13 +441,17 @@ Override ParseOverride(const std::string& text) {
   Override o;
   o.path = text.substr(0, eq);
   const std::string value = text.substr(eq + 1);
+  if (value == "true" || value == "false") {
+    o.flag = value == "true";
+    return o;
+  }
   try {
     std::size_t used = 0;
     o.value = std::stod(value, &used);
     if (used != value.size()) throw std::invalid_argument(value);
   } catch (const std::exception&) {
     throw InputError(fmt::format("override '{}': '{}' is not a number; accepted: KEY=NUMBER, e.g. "
-                                 "{}=1.5",
+                                 "{}=1.5, or KEY=true / KEY=false for a switch",
                                  text, value, o.path));
   }
   return o;

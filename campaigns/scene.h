@@ -8,8 +8,10 @@
 // name the file, the dotted key and the accepted range.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/pipeline/pipeline.h"
@@ -21,11 +23,15 @@ namespace fibrenet::campaigns {
 // optimiser sets its design variables this way. The path must name a key the scene
 // reader knows (in a stage that is enabled); integer keys take integral values only.
 struct Override {
+  Override() = default;
+  Override(std::string key, double number) : path(std::move(key)), value(number) {}
+
   std::string path;
   double value = 0.0;
+  std::optional<bool> flag;  // a switch's value (KEY=true or KEY=false) instead of a number
 };
 
-// Parses "path=value" (as given on a command line).
+// Parses "path=value" (as given on a command line): a number, or true / false for a switch.
 Override ParseOverride(const std::string& text);
 
 // The stage a key's table feeds, in pipeline order: [cell], [fibres], [contact] and

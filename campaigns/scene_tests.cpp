@@ -95,6 +95,7 @@ pipeline::CompressionSettings ReadCompression(TableReader& r, pipeline::Compress
   c.approach_pressure_fraction =
       r.Number("approach_pressure_fraction", c.approach_pressure_fraction, Closed(0, 1),
                "of modulus_pressure_lo_kPa");
+  c.approach_taper = r.Bool("approach_taper", c.approach_taper);
   c.feedback_above_window = r.Bool("feedback_above_window", c.feedback_above_window);
   c.residual_pressure_fraction = r.Number("residual_pressure_fraction",
                                           c.residual_pressure_fraction, Open(0, 1), "of the peak");
@@ -106,6 +107,8 @@ pipeline::CompressionSettings ReadCompression(TableReader& r, pipeline::Compress
   r.Finish();
   if (c.modulus_pressure_lo >= c.modulus_pressure_hi)
     r.Fail("modulus_pressure_lo_kPa", "must be below modulus_pressure_hi_kPa");
+  if (c.approach_taper && !(c.approach_speed_fraction > c.min_speed_fraction))
+    r.Fail("approach_taper", "needs approach_speed_fraction above min_speed_fraction");
   return c;
 }
 

@@ -55,8 +55,16 @@ std::int64_t LoadContinuous(CompressionRig& rig, const CompressionSettings& s,
   // The approach ends for good the first time the pressure reaches its end.
   const double approach_end = s.approach_pressure_fraction * s.modulus_pressure_lo;
   bool approaching = s.approach_speed_fraction > s.min_speed_fraction;
-  w.walls[1].vz = -(approaching ? std::max(loading_speed(0.0), s.approach_speed_fraction * speed)
-                                : loading_speed(0.0));
+  const double approach_speed = std::max(loading_speed(0.0), s.approach_speed_fraction * speed);
+  // Tapered: the speed squared in inverse proportion to the pressure, so that the kinetic
+  // energy put into the sheet per unit of its pressure stays as at the approach's end.
+  auto tapered_speed = [&](double pressure) {
+    if (!(pressure > 0.0)) return speed;
+    return std::clamp(approach_speed * std::sqrt(approach_end / pressure), approach_speed, speed);
+  };
+  w.walls[1].vz = -(!approaching               ? loading_speed(0.0)
+                    : s.approach_taper          ? tapered_speed(0.0)
+                                                : approach_speed);
   for (std::size_t i = 0; i < p.size(); ++i) p.v[i] = rig.Field().At(p.x[i]);
   rig.Prepare();
   const auto every = std::max<std::int64_t>(
@@ -85,6 +93,10 @@ std::int64_t LoadContinuous(CompressionRig& rig, const CompressionSettings& s,
     if (approaching && pressure >= approach_end) {
       approaching = false;
       rig.SetPlatenVelocity(-loading_speed(rig.PlatenWork()));
+    } else if (approaching && s.approach_taper) {
+      // Never faster again: a pressure that falls back as a fibre slips does not speed it up.
+      const double slower = tapered_speed(pressure);
+      if (slower < 0.99 * rig.PlatenSpeed()) rig.SetPlatenVelocity(-slower);
     }
     if (sign < 0 && !approaching && rig.PlatenSpeed() < speed) {
       const double faster = loading_speed(rig.PlatenWork());
@@ -223,6 +235,10 @@ std::string CompressionSettings::Validate() const {
   if (!(approach_pressure_fraction >= 0.0 && approach_pressure_fraction <= 1.0))
     return fmt::format("approach_pressure_fraction = {}: must lie in [0, 1] of "
                        "modulus_pressure_lo", approach_pressure_fraction);
+  if (approach_taper && !(approach_speed_fraction > min_speed_fraction))
+    return fmt::format("approach_taper needs an approach: approach_speed_fraction = {} must lie "
+                       "above min_speed_fraction = {}", approach_speed_fraction,
+                       min_speed_fraction);
   if (settle_max_steps < 0)
     return fmt::format("settle_max_steps = {}: must be >= 0 (0 = 100 x a move's steps)",
                        settle_max_steps);
@@ -276,12 +292,15 @@ CompressionResult RunCompressionTest(const Network& net, const CompressionSettin
       {"zd_mass_scale", base.mass_scale, "-"},
       {"zd_snap_throughs", static_cast<double>(f.snap_throughs), "-"},
   };
-  // The loading branch against the van Wyk form p = k (phi^n - phi0^n): its exponent, and
-  // how much of the curve the form explains. A curve that is no power law in phi (a bonded
-  // sheet stiff from the first touch) puts n at the fit's lower bound, 1, with a low r2.
+  // The loading branch up to the first bond failure against the van Wyk form p = k (phi^n -
+  // phi0^n): its exponent, how much of the curve the form explains, and how far it reaches.
+  // Through the breaking beyond (a bonded sheet's curve softens there) the best n fell
+  // below the grid, and the fit read the grid's end, 1. An exponent at either end of the
+  // grid, with a low r2, says the form does not describe the curve (a buckling column's).
   const VanWykFit wyk = FitVanWyk(base.curve, FibreVolume(net) / (base.area * base.h0));
   res.metrics.push_back({"zd_van_wyk_exponent", wyk.n, "-"});
   res.metrics.push_back({"zd_van_wyk_r2", wyk.r2, "-"});
+  res.metrics.push_back({"zd_van_wyk_top_kPa", wyk.p_top * 1e-3, "kPa"});
   res.curves.push_back(std::move(base.curve));
   if (!s.attribution) return res;
 
@@ -341,15 +360,27 @@ int CountSnapThroughs(const std::vector<double>& loading_pressure, double from_p
 VanWykFit FitVanWyk(const Curve& c, double phi_h0, double p_min_fraction) {
   const std::vector<double> e = c.Values("strain"), p = c.Values("pressure_Pa"),
                             br = c.Values("branch");
+  // The loading samples up to the first bond failure.
+  std::size_t end = 0;
+  while (end < p.size() && br[end] == 0.0) ++end;
+  if (std::find(c.columns.begin(), c.columns.end(), "bonds_broken") != c.columns.end()) {
+    const std::vector<double> broken = c.Values("bonds_broken");
+    for (std::size_t k = 1; k < end; ++k)
+      if (broken[k] > broken[0]) {
+        end = k;
+        break;
+      }
+  }
+  VanWykFit best;
   double peak = 0.0;
-  for (std::size_t k = 0; k < p.size() && br[k] == 0.0; ++k) peak = std::max(peak, p[k]);
+  for (std::size_t k = 0; k < end; ++k) peak = std::max(peak, p[k]);
   std::vector<double> phi, pr;
-  for (std::size_t k = 0; k < p.size() && br[k] == 0.0; ++k) {
+  for (std::size_t k = 0; k < end; ++k) {
     if (p[k] < p_min_fraction * peak || e[k] >= 1.0) continue;
     phi.push_back(phi_h0 / (1.0 - e[k]));
     pr.push_back(p[k]);
+    best.p_top = std::max(best.p_top, p[k]);
   }
-  VanWykFit best;
   if (phi.size() < 3) return best;
   double mean_p = 0.0;
   for (double v : pr) mean_p += v;

@@ -229,6 +229,33 @@ length_mm = { distribution = "normal", mean = 0.5, sd = 0.05, min = 0.3, max = 0
   const Override o = ParseOverride("pressing.target_thickness_um=150");
   EXPECT_EQ(o.path, "pressing.target_thickness_um");
   EXPECT_DOUBLE_EQ(o.value, 150.0);
+  EXPECT_FALSE(o.flag.has_value());
+}
+
+// A switch is overridden by true or false, and only a switch.
+TEST(SceneFile, OverrideSetsSwitches) {
+  const std::string scene = std::string(kMinimal) + "[compression]\nfeedback_above_window = true\n";
+  const Override off = ParseOverride("compression.feedback_above_window=false");
+  ASSERT_TRUE(off.flag.has_value());
+  EXPECT_FALSE(*off.flag);
+  EXPECT_FALSE(ParseScene(scene, "s.toml", {off}).tests.compression->feedback_above_window);
+  // A switch the scene does not write takes the override too.
+  const Override on = ParseOverride("compression.attribution=true");
+  EXPECT_TRUE(ParseScene(scene, "s.toml", {on}).tests.compression->attribution);
+  const std::string number = InputErrorOf([&] {
+    ParseScene(scene, "s.toml", {ParseOverride("compression.feedback_above_window=1")});
+  });
+  EXPECT_NE(number.find("accepted: true or false"), std::string::npos) << number;
+  const std::string flag = InputErrorOf([&] {
+    ParseScene(scene, "s.toml", {ParseOverride("compression.max_strain=true")});
+  });
+  EXPECT_NE(flag.find("compression.max_strain"), std::string::npos) << flag;
+  EXPECT_NE(flag.find("expected a number"), std::string::npos) << flag;
+  // A number the scene writes is not turned into a switch either.
+  const std::string written = InputErrorOf([&] {
+    ParseScene(scene, "s.toml", {ParseOverride("pressing.target_thickness_um=false")});
+  });
+  EXPECT_NE(written.find("not a switch"), std::string::npos) << written;
 }
 
 TEST(SceneFile, OverrideRejectsUnknownPathsAndBadValues) {

@@ -119,6 +119,52 @@ TEST(ZdCompression, TheSlowToeKeepsAPressedSheetQuasiStatic) {
   EXPECT_LE(slow_toe.Value("zd_van_wyk_r2"), 1.0);
 }
 
+// The tapered approach: the platen starts at the full speed and slows as the pressure rises,
+// never below the constant approach's speed and never speeding up, and reaches the window in
+// fewer steps with the guard holding and the modulus as the constant approach reads it.
+TEST(ZdCompression, TheTaperedApproachSlowsAsThePressureRises) {
+  const PipelineReport sheet = RunPipeline(testing::TinySpec(7), Progress{});
+  CompressionSettings c;
+  c.quasi_static.loading_steps = 20000;
+  c.samples = 400;  // a sample every 50 steps: the speed's course through the approach
+  c.max_pressure = 5000.0;  // past the modulus window, which is what the approach leads to
+  c.approach_speed_fraction = 0.05;
+  const CompressionResult constant = RunCompressionTest(sheet.network, c);
+  c.approach_taper = true;
+  const CompressionResult taper = RunCompressionTest(sheet.network, c);
+  std::printf("tapered approach: %ld steps (constant %ld), kinetic / platen work %.4g, zd_modulus "
+              "%.6g kPa (constant %.6g)\n", static_cast<long>(taper.steps),
+              static_cast<long>(constant.steps), taper.Value("zd_kinetic_work_ratio"),
+              taper.Value("zd_modulus_kPa"), constant.Value("zd_modulus_kPa"));
+  EXPECT_TRUE(taper.quasi_static) << taper.warnings.back();
+  EXPECT_LT(taper.steps, constant.steps);
+  EXPECT_NEAR(taper.Value("zd_modulus_kPa"), constant.Value("zd_modulus_kPa"),
+              0.05 * constant.Value("zd_modulus_kPa"));
+
+  // The platen's travel per sample while the pressure is below the approach's end.
+  const double approach_end = c.approach_pressure_fraction * c.modulus_pressure_lo;
+  auto approach_moves = [&](const CompressionResult& r) {
+    const Curve& curve = r.curves.front();
+    const std::vector<double> gap = curve.Values("gap_m");
+    const std::vector<double> pressure = curve.Values("pressure_Pa");
+    std::vector<double> moves;
+    for (std::size_t k = 1; k < gap.size() && pressure[k] < approach_end; ++k)
+      moves.push_back(gap[k - 1] - gap[k]);
+    return moves;
+  };
+  const double constant_move = approach_moves(constant).at(1);
+  // The samples read the pressure between steps: the approach may have ended (the slow toe's
+  // moves are shorter) before a sample reads its end. Up to then the moves never lengthen.
+  std::vector<double> tapered = approach_moves(taper);
+  const auto toe = std::find_if(tapered.begin(), tapered.end(),
+                                [&](double move) { return move < constant_move * (1.0 - 1e-6); });
+  tapered.erase(toe, tapered.end());
+  ASSERT_GE(tapered.size(), 3u);
+  EXPECT_GT(tapered.front(), 2.0 * constant_move);  // fast where the pressure is low
+  for (std::size_t k = 1; k < tapered.size(); ++k)
+    EXPECT_LE(tapered[k], tapered[k - 1] * (1.0 + 1e-9)) << "sample " << k;
+}
+
 // A loop stopped at a low pressure, in the slow toe: the platen must go back up at the speed
 // it came down with. Jumping to the full speed threw the sheet's scaled mass at it: the
 // generic tissue's loop to 4.9 kPa returned 18% more work than it took (hysteresis -0.18),

@@ -151,6 +151,39 @@ TEST(ZdCompression, VanWykFitRecoversAKnownExponent) {
   }
 }
 
+// A bonded sheet's curve softens where its bonds start to break: the fit stops at the first
+// failure and gives back the exponent of the elastic part. Fitted through the breaking, the
+// same curve puts the exponent elsewhere.
+TEST(ZdCompression, VanWykFitStopsAtTheFirstBondFailure) {
+  const double n = 5.0, phi_h0 = 0.05, k = 2e6;
+  auto pressure = [&](double strain) {
+    return k * (std::pow(phi_h0 / (1.0 - strain), n) - std::pow(phi_h0, n));
+  };
+  Curve c;
+  c.columns = {"strain", "pressure_Pa", "bonds_broken", "branch"};
+  const double first_failure = 0.3;
+  for (int i = 0; i <= 100; ++i) {
+    const double strain = 0.6 * i / 100.0;
+    if (strain <= first_failure) {
+      c.Add({strain, pressure(strain), 0.0, 0.0});
+    } else {  // breaking: the pressure rises at a fifth of the elastic slope
+      const double slope = (pressure(first_failure) - pressure(first_failure - 0.006)) / 0.006;
+      c.Add({strain, pressure(first_failure) + 0.2 * slope * (strain - first_failure),
+             100.0 * (strain - first_failure), 0.0});
+    }
+  }
+  const VanWykFit fit = FitVanWyk(c, phi_h0);
+  EXPECT_NEAR(fit.n, n, 0.011);
+  EXPECT_GT(fit.r2, 0.9999);
+  EXPECT_NEAR(fit.p_top, pressure(first_failure), 1e-9 * pressure(first_failure));
+
+  Curve without_failures = c;
+  without_failures.columns = {"strain", "pressure_Pa", "unrelated", "branch"};
+  const VanWykFit through = FitVanWyk(without_failures, phi_h0);
+  EXPECT_GT(std::abs(through.n - n), 0.5);
+  EXPECT_GT(through.p_top, fit.p_top);
+}
+
 TEST(ZdCompression, StopsAtTheTargetPressure) {
   const CompressionResult full = RunCompressionTest(FloatingMat(), MatCompression());
   CompressionSettings s = MatCompression();
