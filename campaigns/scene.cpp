@@ -244,6 +244,12 @@ pipeline::PressingSettings ReadPressing(TableReader& r, ReadContext& ctx) {
   p.max_corrections = static_cast<int>(r.Integer("max_corrections", 5, 0, 100));
   p.speed = r.Number("speed_m_per_s", 0.1, OpenClosed(0, 100), "m/s");
   p.approach_speed = r.Number("approach_speed_m_per_s", 1.0, OpenClosed(0, 100), "m/s");
+  p.fast_speed = r.Number("fast_speed_m_per_s", 0.0, Closed(0, 100), "m/s (0 = one speed)");
+  p.fast_until_ratio =
+      r.Number("fast_until_thickness_ratio", 1.5, OpenClosed(1, 100), "of target_thickness_um");
+  if (p.fast_speed > p.speed && by_pressure)
+    r.Fail("fast_speed_m_per_s", "needs target_thickness_um (the plate presses fast down to "
+                                 "fast_until_thickness_ratio x the target)");
   p.mass_scale = r.Number("mass_scale", 1, Closed(1, 1e8), "");
   p.damping_time = r.Number("damping_time_us", 10, OpenClosed(0, 1e6), "us") * 1e-6;
   p.min_hold_time = r.Number("min_hold_time_us", 0, Closed(0, 1e7), "us") * 1e-6;

@@ -35,6 +35,14 @@ std::string PressingSettings::Validate() const {
     return fmt::format("speed = {} m/s: must lie in (0, 100]", speed);
   if (!(approach_speed > 0.0 && approach_speed <= 100.0))
     return fmt::format("approach_speed = {} m/s: must lie in (0, 100]", approach_speed);
+  if (!(fast_speed >= 0.0 && fast_speed <= 100.0))
+    return fmt::format("fast_speed = {} m/s: must lie in [0, 100] (0 = one speed)", fast_speed);
+  if (!(fast_until_ratio > 1.0 && fast_until_ratio <= 100.0))
+    return fmt::format("fast_until_ratio = {}: must lie in (1, 100] of the target thickness",
+                       fast_until_ratio);
+  if (fast_speed > speed && target != PressTarget::kThickness)
+    return fmt::format("fast_speed = {} m/s needs a target thickness (it presses fast down to "
+                       "fast_until_ratio x the target)", fast_speed);
   if (!(mass_scale >= 1.0 && mass_scale <= 1e8))
     return fmt::format("mass_scale = {}: must lie in [1, 1e8]", mass_scale);
   if (!(damping_time > 0.0 && damping_time <= 1.0))
@@ -139,13 +147,23 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
     sample();
   }
   w.physics.drag = false;
-  plate_ref().vz = -s.speed;
+  // 1b. Pressing, at fast_speed down to slow_from if two speeds are set, then at speed.
+  const bool two_speeds = s.fast_speed > s.speed;
+  const double slow_from = two_speeds ? s.fast_until_ratio * stop_z : stop_z;
+  const std::int64_t fast_chunk =
+      two_speeds ? std::max<std::int64_t>(
+                       1, static_cast<std::int64_t>(0.25 * r_max / (s.fast_speed * w.settings.dt)))
+                 : chunk;
   Stopwatch clock;
   double next_report = progress.interval_s;
   while (plate_ref().z > stop_z) {
+    const bool fast = two_speeds && plate_ref().z > slow_from;
+    const double speed = fast ? s.fast_speed : s.speed;
+    const double goal = fast ? slow_from : stop_z;
+    plate_ref().vz = -speed;
     const auto left = static_cast<std::int64_t>(
-        std::ceil((plate_ref().z - stop_z) / (s.speed * w.settings.dt)));
-    sim.Run(std::min(chunk, std::max<std::int64_t>(left, 1)));
+        std::ceil((plate_ref().z - goal) / (speed * w.settings.dt)));
+    sim.Run(std::min(fast ? fast_chunk : chunk, std::max<std::int64_t>(left, 1)));
     note_touch();
     sample();
     if (s.target == PressTarget::kPressure && pressure() >= s.target_pressure) break;

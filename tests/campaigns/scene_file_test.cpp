@@ -195,6 +195,18 @@ TEST(SceneFile, NonPhysicalCombinationsAreRejected) {
     ParseScene("[forming]\n[pressing]\ntarget_thickness_um = 200\ntarget_pressure_kPa = 5\n", "b.toml");
   });
   EXPECT_NE(both.find("pressing.target_pressure_kPa"), std::string::npos) << both;
+  // Two pressing speeds down to a multiple of a target thickness the scene does not set.
+  const std::string fast = InputErrorOf([] {
+    ParseScene("[forming]\n[pressing]\ntarget_pressure_kPa = 5\nfast_speed_m_per_s = 0.3\n",
+               "f.toml");
+  });
+  EXPECT_NE(fast.find("pressing.fast_speed_m_per_s"), std::string::npos) << fast;
+  EXPECT_NE(fast.find("target_thickness_um"), std::string::npos) << fast;
+  // A tapered ZD approach without an approach.
+  const std::string taper = InputErrorOf([] {
+    ParseScene("[forming]\n[compression]\napproach_taper = true\n", "t.toml");
+  });
+  EXPECT_NE(taper.find("compression.approach_taper"), std::string::npos) << taper;
   // No forming stage.
   EXPECT_NE(InputErrorOf([] { ParseScene("seed = 1\n", "nf.toml"); }).find("[forming]"),
             std::string::npos);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <utility>
@@ -133,6 +134,52 @@ TEST(Pipeline, PressingApproachesTheWebSurfaceLayingDownAStandingFibre) {
   EXPECT_LT(r.press_start, base);
   EXPECT_LT(HighestTop(net.world.particles), surface) << "the standing fibre was laid down";
   EXPECT_EQ(net.CheckInvariants(), "");
+}
+
+// Two pressing speeds: the plate presses at the fast speed down to 1.5 x the target, then at
+// the slow one, in fewer steps, and the pressed web comes out within the guard and at the
+// target as with the slow speed alone.
+TEST(Pipeline, TwoPressingSpeedsPressFastWhereTheWebIsLooseAndEndSlowly) {
+  const PipelineSpec spec = TinySpec(7);
+  Network one_speed = RunTiny(7, false).network;
+  const PressingResult slow =
+      Press(one_speed, spec.sheet, *spec.pressing, spec.metrics, Progress{});
+  PressingSettings two = *spec.pressing;
+  two.fast_speed = 3.0 * two.speed;
+  two.fast_until_ratio = 1.5;
+  Network two_speeds = RunTiny(7, false).network;
+  const PressingResult fast = Press(two_speeds, spec.sheet, two, spec.metrics, Progress{});
+  for (const std::string& w : fast.warnings) ADD_FAILURE() << "warning: " << w;
+  EXPECT_LT(fast.steps, slow.steps);
+  EXPECT_LE(fast.kinetic_to_work_ratio, two.kinetic_work_tolerance);
+  EXPECT_NEAR(fast.thickness_at_hold, two.target_thickness,
+              two.control_tolerance * two.target_thickness);
+
+  // The plate's speed between samples while it presses: the fast one above 1.5 x the target,
+  // the slow one below.
+  const double slow_from = two.fast_until_ratio * two.target_thickness;
+  int fast_samples = 0, slow_samples = 0;
+  for (std::size_t k = 1; k < fast.curve.size(); ++k) {
+    const PressPoint& a = fast.curve[k - 1];
+    const PressPoint& b = fast.curve[k];
+    if (a.plate_z <= two.target_thickness + 1e-12) break;  // at the target: the hold
+    if (a.plate_z > fast.press_start) continue;             // the approach
+    const double speed = (a.plate_z - b.plate_z) / (b.time - a.time);
+    if (b.plate_z > slow_from + 1e-9) {
+      EXPECT_NEAR(speed, two.fast_speed, 1e-6 * two.fast_speed) << "sample " << k;
+      ++fast_samples;
+    } else if (a.plate_z <= slow_from + 1e-9) {
+      EXPECT_NEAR(speed, two.speed, 1e-6 * two.speed) << "sample " << k;
+      ++slow_samples;
+    }
+  }
+  EXPECT_GT(fast_samples, 3);
+  EXPECT_GT(slow_samples, 3);
+  std::printf("two speeds: %ld steps (one speed %ld), kinetic / work %.3g (%.3g), bonds %zu "
+              "(%zu)\n",
+              static_cast<long>(fast.steps), static_cast<long>(slow.steps),
+              fast.kinetic_to_work_ratio, slow.kinetic_to_work_ratio, fast.bonds_formed,
+              slow.bonds_formed);
 }
 
 }  // namespace
