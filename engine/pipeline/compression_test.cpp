@@ -390,7 +390,7 @@ VanWykFit FitVanWyk(const Curve& c, double phi_h0, double p_min_fraction) {
   // phi is scaled by its largest value so that phi^n stays of order one for any n.
   const double phi_max = *std::max_element(phi.begin(), phi.end());
   double best_ss = std::numeric_limits<double>::infinity();
-  for (double n = 1.0; n <= 12.0 + 1e-9; n += 0.01) {
+  for (double n = 1.0; n <= 30.0 + 1e-9; n += 0.01) {
     double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
     const auto m = static_cast<double>(phi.size());
     std::vector<double> x(phi.size());

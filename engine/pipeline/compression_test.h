@@ -153,7 +153,7 @@ struct VanWykFit {
 // "bonds_broken" first rises, where the curve has that column), not through the breaking
 // that softens a bonded sheet's curve beyond it. phi = phi_h0 / (1 - strain), phi_h0 the
 // volume fraction at h0. Fits the loading samples with p >= p_min_fraction x the highest
-// pressure of that range, n on a 0.01 grid in [1, 12]; fewer than three samples: no fit
+// pressure of that range, n on a 0.01 grid in [1, 30]; fewer than three samples: no fit
 // (n = 0, r2 = 0).
 VanWykFit FitVanWyk(const Curve& compression, double phi_h0, double p_min_fraction = 0.01);
 // Fibre volume of the network, sum over fibres of pi (d/2)^2 * length [m^3], for phi.

@@ -114,7 +114,7 @@ TEST(ZdCompression, TheSlowToeKeepsAPressedSheetQuasiStatic) {
   std::printf("van Wyk: n = %.3g, r2 = %.4g\n", slow_toe.Value("zd_van_wyk_exponent"),
               slow_toe.Value("zd_van_wyk_r2"));
   EXPECT_GE(slow_toe.Value("zd_van_wyk_exponent"), 1.0);
-  EXPECT_LE(slow_toe.Value("zd_van_wyk_exponent"), 12.0);
+  EXPECT_LE(slow_toe.Value("zd_van_wyk_exponent"), 30.0);
   EXPECT_GE(slow_toe.Value("zd_van_wyk_r2"), 0.0);
   EXPECT_LE(slow_toe.Value("zd_van_wyk_r2"), 1.0);
 }

@@ -133,7 +133,8 @@ TEST(ZdCompression, CountsSnapThroughs) {
 
 // A loading curve of exactly the van Wyk form gives back its exponent, and its r2 is 1.
 TEST(ZdCompression, VanWykFitRecoversAKnownExponent) {
-  for (double n : {2.0, 3.0, 5.5}) {
+  // 15: the bonded 10 mm generic tissue reads 12 (docs/virtual-tests.md).
+  for (double n : {2.0, 3.0, 5.5, 15.0}) {
     const double phi_h0 = 0.05, k = 2e6;
     Curve c;
     c.columns = {"strain", "pressure_Pa", "branch"};
