@@ -221,6 +221,10 @@ std::string CompressionSettings::Validate() const {
         modulus_pressure_hi <= 1e8))
     return fmt::format("modulus window [{}, {}] Pa: need 0 <= lo < hi <= 1e8",
                        modulus_pressure_lo, modulus_pressure_hi);
+  if (!(van_wyk_pressure_lo >= 0.0 && van_wyk_pressure_hi >= 0.0 &&
+        (van_wyk_pressure_hi == 0.0 || van_wyk_pressure_lo < van_wyk_pressure_hi)))
+    return fmt::format("van Wyk fit range [{}, {}] Pa: need 0 <= lo and lo < hi (hi = 0: no top)",
+                       van_wyk_pressure_lo, van_wyk_pressure_hi);
   if (!(residual_pressure_fraction > 0.0 && residual_pressure_fraction < 1.0))
     return fmt::format("residual_pressure_fraction = {}: must lie in (0, 1)",
                        residual_pressure_fraction);
@@ -297,9 +301,11 @@ CompressionResult RunCompressionTest(const Network& net, const CompressionSettin
   // Through the breaking beyond (a bonded sheet's curve softens there) the best n fell
   // below the grid, and the fit read the grid's end, 1. An exponent at either end of the
   // grid, with a low r2, says the form does not describe the curve (a buckling column's).
-  const VanWykFit wyk = FitVanWyk(base.curve, FibreVolume(net) / (base.area * base.h0));
+  const VanWykFit wyk = FitVanWyk(base.curve, FibreVolume(net) / (base.area * base.h0),
+                                  s.van_wyk_pressure_lo, s.van_wyk_pressure_hi);
   res.metrics.push_back({"zd_van_wyk_exponent", wyk.n, "-"});
   res.metrics.push_back({"zd_van_wyk_r2", wyk.r2, "-"});
+  res.metrics.push_back({"zd_van_wyk_bottom_kPa", wyk.p_bottom * 1e-3, "kPa"});
   res.metrics.push_back({"zd_van_wyk_top_kPa", wyk.p_top * 1e-3, "kPa"});
   res.curves.push_back(std::move(base.curve));
   if (!s.attribution) return res;
@@ -357,7 +363,7 @@ int CountSnapThroughs(const std::vector<double>& loading_pressure, double from_p
   return count;
 }
 
-VanWykFit FitVanWyk(const Curve& c, double phi_h0, double p_min_fraction) {
+VanWykFit FitVanWyk(const Curve& c, double phi_h0, double p_lo, double p_hi) {
   const std::vector<double> e = c.Values("strain"), p = c.Values("pressure_Pa"),
                             br = c.Values("branch");
   // The loading samples up to the first bond failure.
@@ -372,15 +378,21 @@ VanWykFit FitVanWyk(const Curve& c, double phi_h0, double p_min_fraction) {
       }
   }
   VanWykFit best;
+  const bool topped = p_hi > 0.0;
   double peak = 0.0;
-  for (std::size_t k = 0; k < end; ++k) peak = std::max(peak, p[k]);
+  for (std::size_t k = 0; k < end; ++k)
+    if (!topped || p[k] <= p_hi) peak = std::max(peak, p[k]);
+  const double bottom = p_lo > 0.0 ? p_lo : 0.01 * peak;
   std::vector<double> phi, pr;
+  best.p_bottom = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < end; ++k) {
-    if (p[k] < p_min_fraction * peak || e[k] >= 1.0) continue;
+    if (p[k] < bottom || (topped && p[k] > p_hi) || e[k] >= 1.0) continue;
     phi.push_back(phi_h0 / (1.0 - e[k]));
     pr.push_back(p[k]);
     best.p_top = std::max(best.p_top, p[k]);
+    best.p_bottom = std::min(best.p_bottom, p[k]);
   }
+  if (phi.empty()) best.p_bottom = 0.0;
   if (phi.size() < 3) return best;
   double mean_p = 0.0;
   for (double v : pr) mean_p += v;

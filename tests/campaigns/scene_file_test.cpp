@@ -207,6 +207,16 @@ TEST(SceneFile, NonPhysicalCombinationsAreRejected) {
     ParseScene("[forming]\n[compression]\napproach_taper = true\n", "t.toml");
   });
   EXPECT_NE(taper.find("compression.approach_taper"), std::string::npos) << taper;
+  // A van Wyk fit range upside down; a top of 0 (none) takes any bottom.
+  const std::string range = InputErrorOf([] {
+    ParseScene("[forming]\n[compression]\nvan_wyk_pressure_lo_kPa = 300\n"
+               "van_wyk_pressure_hi_kPa = 250\n", "w.toml");
+  });
+  EXPECT_NE(range.find("compression.van_wyk_pressure_lo_kPa"), std::string::npos) << range;
+  const pipeline::PipelineSpec open_top =
+      ParseScene("[forming]\n[compression]\nvan_wyk_pressure_lo_kPa = 300\n", "w.toml");
+  EXPECT_DOUBLE_EQ(open_top.tests.compression->van_wyk_pressure_lo, 3e5);
+  EXPECT_EQ(open_top.tests.compression->van_wyk_pressure_hi, 0.0);
   // No forming stage.
   EXPECT_NE(InputErrorOf([] { ParseScene("seed = 1\n", "nf.toml"); }).find("[forming]"),
             std::string::npos);

@@ -185,6 +185,45 @@ TEST(ZdCompression, VanWykFitStopsAtTheFirstBondFailure) {
   EXPECT_GT(through.p_top, fit.p_top);
 }
 
+// A curve whose exponent changes with the pressure (8 up to 50 kPa, 4 above, the slope
+// continuous), as the bonded generic tissue's falls from over 30 to about 5: over the whole
+// curve the fit reads neither, over a range within one part it reads that part's, and the
+// range it fitted is reported.
+TEST(ZdCompression, VanWykFitOverAPressureRangeReadsThatRangesExponent) {
+  const double phi_h0 = 0.05, k_low = 2e12, n_low = 8.0, n_high = 4.0, knee = 5e4;
+  const double phi_knee = std::pow(knee / k_low + std::pow(phi_h0, n_low), 1.0 / n_low);
+  // Above the knee p = knee + k_high (phi^4 - phi_knee^4), k_high matching the slope there.
+  const double k_high = k_low * n_low * std::pow(phi_knee, n_low - 1.0) /
+                        (n_high * std::pow(phi_knee, n_high - 1.0));
+  auto pressure = [&](double phi) {
+    return phi <= phi_knee
+               ? k_low * (std::pow(phi, n_low) - std::pow(phi_h0, n_low))
+               : knee + k_high * (std::pow(phi, n_high) - std::pow(phi_knee, n_high));
+  };
+  Curve c;
+  c.columns = {"strain", "pressure_Pa", "bonds_broken", "branch"};
+  for (int i = 0; i <= 400; ++i) {
+    const double strain = 0.65 * i / 400.0;  // to about 4 x the knee
+    c.Add({strain, pressure(phi_h0 / (1.0 - strain)), 0.0, 0.0});
+  }
+  const VanWykFit whole = FitVanWyk(c, phi_h0);
+  EXPECT_GT(std::abs(whole.n - n_low), 0.5);
+  EXPECT_GT(std::abs(whole.n - n_high), 0.5);
+
+  const VanWykFit low = FitVanWyk(c, phi_h0, 0.0, 0.9 * knee);
+  EXPECT_NEAR(low.n, n_low, 0.011);
+  EXPECT_GT(low.r2, 0.9999);
+  EXPECT_LE(low.p_top, 0.9 * knee);
+  EXPECT_GT(low.p_top, 0.8 * knee);  // the samples reach the range's top
+
+  const VanWykFit high = FitVanWyk(c, phi_h0, 1.1 * knee, 0.0);
+  EXPECT_NEAR(high.n, n_high, 0.011);
+  EXPECT_GT(high.r2, 0.9999);
+  EXPECT_GE(high.p_bottom, 1.1 * knee);
+  EXPECT_LT(high.p_bottom, 1.3 * knee);
+  EXPECT_DOUBLE_EQ(high.p_top, whole.p_top);
+}
+
 TEST(ZdCompression, StopsAtTheTargetPressure) {
   const CompressionResult full = RunCompressionTest(FloatingMat(), MatCompression());
   CompressionSettings s = MatCompression();
