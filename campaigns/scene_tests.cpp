@@ -97,6 +97,7 @@ pipeline::CompressionSettings ReadCompression(TableReader& r, pipeline::Compress
                "of modulus_pressure_lo_kPa");
   c.approach_taper = r.Bool("approach_taper", c.approach_taper);
   c.feedback_above_window = r.Bool("feedback_above_window", c.feedback_above_window);
+  c.feedback_in_window = r.Bool("feedback_in_window", c.feedback_in_window);
   c.van_wyk_pressure_lo = r.Number("van_wyk_pressure_lo_kPa", c.van_wyk_pressure_lo * 1e-3,
                                    Closed(0, 1e6), "kPa (0 = 1% of the top fitted)") *
                           1e3;
@@ -113,6 +114,8 @@ pipeline::CompressionSettings ReadCompression(TableReader& r, pipeline::Compress
   r.Finish();
   if (c.modulus_pressure_lo >= c.modulus_pressure_hi)
     r.Fail("modulus_pressure_lo_kPa", "must be below modulus_pressure_hi_kPa");
+  if (c.feedback_in_window && !c.feedback_above_window)
+    r.Fail("feedback_in_window", "needs feedback_above_window = true");
   if (c.van_wyk_pressure_hi > 0.0 && c.van_wyk_pressure_lo >= c.van_wyk_pressure_hi)
     r.Fail("van_wyk_pressure_lo_kPa", "must be below van_wyk_pressure_hi_kPa (or that 0)");
   if (c.approach_taper && !(c.approach_speed_fraction > c.min_speed_fraction))

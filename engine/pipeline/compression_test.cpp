@@ -72,7 +72,9 @@ std::int64_t LoadContinuous(CompressionRig& rig, const CompressionSettings& s,
   // Feedback above the window: its control interval, 1/400 of the loading at the full speed.
   const auto control_every =
       std::max<std::int64_t>(1, static_cast<std::int64_t>(rig.loading_time / rig.dt / 400.0));
-  bool feedback = false;  // on once the pressure has passed the window's top
+  bool feedback = false;  // on once the pressure has passed the window's top (or start)
+  const double feedback_from =
+      s.feedback_in_window ? s.modulus_pressure_lo : s.modulus_pressure_hi;
 
   double strain = 0.0, pressure = 0.0, peak = 0.0, strain_at_peak = 0.0;
   int sign = -1;  // -1 platen down (loading), +1 up
@@ -103,7 +105,7 @@ std::int64_t LoadContinuous(CompressionRig& rig, const CompressionSettings& s,
       if (faster > 1.01 * rig.PlatenSpeed()) rig.SetPlatenVelocity(-faster);
     }
     if (s.feedback_above_window && sign < 0 && !approaching) {
-      feedback = feedback || pressure > s.modulus_pressure_hi;
+      feedback = feedback || pressure > feedback_from;
       if (feedback && step % control_every == 0) {
         const double work = rig.PlatenWork();
         const double ratio = work > 0.0 ? rig.FluctuatingKinetic() / work : 0.0;
@@ -243,6 +245,8 @@ std::string CompressionSettings::Validate() const {
     return fmt::format("approach_taper needs an approach: approach_speed_fraction = {} must lie "
                        "above min_speed_fraction = {}", approach_speed_fraction,
                        min_speed_fraction);
+  if (feedback_in_window && !feedback_above_window)
+    return "feedback_in_window needs feedback_above_window";
   if (settle_max_steps < 0)
     return fmt::format("settle_max_steps = {}: must be >= 0 (0 = 100 x a move's steps)",
                        settle_max_steps);

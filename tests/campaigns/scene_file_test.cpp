@@ -207,6 +207,11 @@ TEST(SceneFile, NonPhysicalCombinationsAreRejected) {
     ParseScene("[forming]\n[compression]\napproach_taper = true\n", "t.toml");
   });
   EXPECT_NE(taper.find("compression.approach_taper"), std::string::npos) << taper;
+  // The feedback through the ZD window without the feedback above it.
+  const std::string window = InputErrorOf([] {
+    ParseScene("[forming]\n[compression]\nfeedback_in_window = true\n", "f.toml");
+  });
+  EXPECT_NE(window.find("compression.feedback_in_window"), std::string::npos) << window;
   // A van Wyk fit range upside down; a top of 0 (none) takes any bottom.
   const std::string range = InputErrorOf([] {
     ParseScene("[forming]\n[compression]\nvan_wyk_pressure_lo_kPa = 300\n"

@@ -165,6 +165,50 @@ TEST(ZdCompression, TheTaperedApproachSlowsAsThePressureRises) {
     EXPECT_LE(tapered[k], tapered[k - 1] * (1.0 + 1e-9)) << "sample " << k;
 }
 
+// The feedback from the window's start: the platen leaves the floor speed inside the modulus
+// window (the feedback above the window keeps it there), the loop takes fewer steps, the
+// guard holds, and the modulus stays near the one read at half the floor.
+TEST(ZdCompression, FeedbackFromTheWindowStartSpeedsTheWindowUp) {
+  const PipelineReport sheet = RunPipeline(testing::TinySpec(7), Progress{});
+  CompressionSettings c;
+  c.quasi_static.loading_steps = 20000;
+  c.samples = 400;
+  c.max_pressure = 5000.0;  // past the window
+  c.feedback_above_window = true;
+  const CompressionResult above = RunCompressionTest(sheet.network, c);
+  c.feedback_in_window = true;
+  const CompressionResult in_window = RunCompressionTest(sheet.network, c);
+  c.feedback_in_window = false;
+  c.min_speed_fraction *= 0.5;
+  const CompressionResult half_floor = RunCompressionTest(sheet.network, c);
+  std::printf("feedback from the window's start: %ld steps (from its top %ld, half the floor "
+              "%ld), kinetic / platen work %.4g, zd_modulus %.6g kPa (%.6g, %.6g)\n",
+              static_cast<long>(in_window.steps), static_cast<long>(above.steps),
+              static_cast<long>(half_floor.steps), in_window.Value("zd_kinetic_work_ratio"),
+              in_window.Value("zd_modulus_kPa"), above.Value("zd_modulus_kPa"),
+              half_floor.Value("zd_modulus_kPa"));
+  EXPECT_TRUE(in_window.quasi_static) << in_window.warnings.back();
+  EXPECT_LT(in_window.steps, above.steps);
+  EXPECT_NEAR(in_window.Value("zd_modulus_kPa"), half_floor.Value("zd_modulus_kPa"),
+              0.05 * half_floor.Value("zd_modulus_kPa"));
+
+  // The platen's longest move between samples inside the window, against the floor's move.
+  auto longest_window_move = [&](const CompressionResult& r) {
+    const Curve& curve = r.curves.front();
+    const std::vector<double> gap = curve.Values("gap_m");
+    const std::vector<double> pressure = curve.Values("pressure_Pa");
+    const std::vector<double> branch = curve.Values("branch");
+    double longest = 0.0;
+    for (std::size_t k = 1; k < gap.size() && branch[k] == 0.0; ++k)
+      if (pressure[k - 1] >= c.modulus_pressure_lo && pressure[k] <= c.modulus_pressure_hi)
+        longest = std::max(longest, gap[k - 1] - gap[k]);
+    return longest;
+  };
+  const double floor_move = longest_window_move(above);
+  ASSERT_GT(floor_move, 0.0);
+  EXPECT_GT(longest_window_move(in_window), 1.5 * floor_move);
+}
+
 // A loop stopped at a low pressure, in the slow toe: the platen must go back up at the speed
 // it came down with. Jumping to the full speed threw the sheet's scaled mass at it: the
 // generic tissue's loop to 4.9 kPa returned 18% more work than it took (hysteresis -0.18),
