@@ -106,8 +106,11 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
     result.max_pressure = std::max(result.max_pressure, pressure());
   };
   // Chunks of a quarter particle radius of plate travel.
-  const std::int64_t chunk = std::clamp<std::int64_t>(
-      static_cast<std::int64_t>(0.25 * r_max / (s.speed * w.settings.dt)), 10, 2000);
+  auto quarter_radius_steps = [&](double speed) {
+    return std::max<std::int64_t>(
+        1, static_cast<std::int64_t>(0.25 * r_max / (speed * w.settings.dt)));
+  };
+  const std::int64_t chunk = std::clamp<std::int64_t>(quarter_radius_steps(s.speed), 10, 2000);
 
   // 1. Compression to the target gap or pressure.
   const double floor_gap = 2.0 * r_max + boss;  // the plate never comes closer to the wire
@@ -130,8 +133,7 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
   // knocks down and the web's residual motion from forming (which the pressing mass scale
   // multiplies), and acts on nothing at rest.
   const double approach = std::max(s.approach_speed, s.speed);
-  const std::int64_t approach_chunk = std::max<std::int64_t>(
-      1, static_cast<std::int64_t>(0.25 * r_max / (approach * w.settings.dt)));
+  const std::int64_t approach_chunk = quarter_radius_steps(approach);
   const double web_surface =
       MeasureSurfaces(w, metrics.thickness_grid, metrics.surface_percentile).top;
   result.press_start = std::max(stop_z, web_surface + boss);
@@ -150,10 +152,7 @@ PressingResult Press(Network& net, const SheetSpec& sheet, const PressingSetting
   // 1b. Pressing, at fast_speed down to slow_from if two speeds are set, then at speed.
   const bool two_speeds = s.fast_speed > s.speed;
   const double slow_from = two_speeds ? s.fast_until_ratio * stop_z : stop_z;
-  const std::int64_t fast_chunk =
-      two_speeds ? std::max<std::int64_t>(
-                       1, static_cast<std::int64_t>(0.25 * r_max / (s.fast_speed * w.settings.dt)))
-                 : chunk;
+  const std::int64_t fast_chunk = two_speeds ? quarter_radius_steps(s.fast_speed) : chunk;
   Stopwatch clock;
   double next_report = progress.interval_s;
   while (plate_ref().z > stop_z) {
