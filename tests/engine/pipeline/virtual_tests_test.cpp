@@ -316,6 +316,25 @@ TEST(TensileTest, ElasticStripUnloadsAndReloadsOnTheSameLine) {
   EXPECT_EQ(branch.back(), 2.0);  // load, unload, reload
 }
 
+// The mass scale goes as 1 / (safety x loading steps)^2: a larger safety with the loading
+// steps cut in proportion keeps the inertia and loads the strip in fewer, longer steps
+// (generic-tissue-10mm.toml runs its tests so).
+TEST(TensileTest, SafetyAndLoadingStepsTradeAtOneMassScale) {
+  const Network net = ParallelFibres(5);
+  const TensileResult base = RunTensileTest(net, SmallStrainTensile());
+  TensileSettings s = SmallStrainTensile();
+  s.quasi_static.time_step_safety = 0.8;
+  s.quasi_static.loading_steps = 1250;
+  const TensileResult coarse = RunTensileTest(net, s);
+  EXPECT_GT(base.mass_scale, 1.0);
+  EXPECT_NEAR(coarse.mass_scale / base.mass_scale, 1.0, 1e-12);
+  EXPECT_NEAR(coarse.dt / base.dt, 1.6, 1e-12);
+  EXPECT_NEAR(static_cast<double>(coarse.steps) / static_cast<double>(base.steps), 0.625, 0.01);
+  EXPECT_NEAR(coarse.Value("tensile_modulus_N_per_m") / base.Value("tensile_modulus_N_per_m"),
+              1.0, 0.002);
+  EXPECT_TRUE(coarse.quasi_static);
+}
+
 TEST(TensileTest, BreaksAtTheFibreStrengthAndReportsIt) {
   Network net = ParallelFibres(2);
   const double strength = 0.05;  // [N]: a fibre breaks at strain 0.05 / (E A) ~ 1.6%
