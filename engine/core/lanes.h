@@ -47,6 +47,12 @@ inline void GatherVec3Lanes(const Vec3 (&v)[kLanes], Vec3Lanes& out) {
   out.z = Across([&](int l) { return v[l].z(); });
 }
 
+// Whether a comparison of lanes (a vector of 0 or -1 per lane) holds in every lane.
+template <class Mask>
+inline bool AllLanes(const Mask& m) {
+  return (m[0] & m[1] & m[2] & m[3]) != 0;
+}
+
 namespace lanes {
 
 inline Lanes Splat(double v) { return Lanes{v, v, v, v}; }

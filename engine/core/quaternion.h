@@ -37,13 +37,10 @@ inline T InverseLeftJacobianShortSeries(T a2) {
   return 1.0 / 12.0 + a2 * (1.0 / 720.0 + a2 * (1.0 / 30240.0 + a2 / 1209600.0));
 }
 
-// Rotation vector (axis * angle, radians) of a unit quaternion, angle in [0, pi].
-inline Vec3 RotationVector(const Quat& q) {
-  // Take the shorter way round: q and -q are the same rotation.
-  const double sign = q.w() < 0.0 ? -1.0 : 1.0;
-  const Vec3 v = sign * q.vec();
-  const double w = sign * q.w();
-  const double s2 = v.squaredNorm();
+// The factor that takes the vector part v of a unit quaternion with w >= 0 (s2 = |v|^2) to
+// its rotation vector: theta = v * RotationVectorScale(s2, w). Scalar on its own so that the
+// bond lanes (beam_bond_lanes.h) apply the very same branches to one lane.
+inline double RotationVectorScale(double s2, double w) {
   // angle = 2 atan(t), t = |v| / w, t^2 about angle^2 / 4. Below t = 0.1 (0.2 rad) the series
   // of atan(t) / t to t^14 is exact to rounding: the first term left out, t^16 / 17, is below
   // 6e-18; below t^2 = kShortSeriesAngle2 / 4 the series to t^8 is (t^10 / 11 < 1e-19).
@@ -59,10 +56,19 @@ inline Vec3 RotationVector(const Quat& q) {
                                       t2 * (1.0 / 9.0 -
                                             t2 * (1.0 / 11.0 -
                                                   t2 * (1.0 / 13.0 - t2 / 15.0))))));
-    return v * ((2.0 * inv_w) * atan_t_over_t);
+    return (2.0 * inv_w) * atan_t_over_t;
   }
   const double s = std::sqrt(s2);
-  return v * (2.0 * std::atan2(s, w) / s);
+  return 2.0 * std::atan2(s, w) / s;
+}
+
+// Rotation vector (axis * angle, radians) of a unit quaternion, angle in [0, pi].
+inline Vec3 RotationVector(const Quat& q) {
+  // Take the shorter way round: q and -q are the same rotation.
+  const double sign = q.w() < 0.0 ? -1.0 : 1.0;
+  const Vec3 v = sign * q.vec();
+  const double w = sign * q.w();
+  return v * RotationVectorScale(v.squaredNorm(), w);
 }
 
 // Below this squared rotation angle [rad^2] QuatFromRotationVector uses its series.

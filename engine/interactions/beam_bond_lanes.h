@@ -9,8 +9,10 @@
 // The lanes take the common case only, and say per lane when the bond needs EvaluateBond:
 // - its type must have no plastic yield (LanesTakeType); the lanes advance a Maxwell
 //   dashpot and return its new extension, which the caller stores for the bonds it takes;
-// - its relative rotation must lie in the short-series range (kShortSeriesAngle2);
 // - it must not reach failure (the caller books the break through EvaluateBond).
+// Any relative rotation goes: where every lane lies in the short series (kShortSeriesAngle2,
+// nearly every bond of a loaded sheet) their polynomials run as vectors, and otherwise each
+// lane takes the scalar branch of its own angle (the compressed sheet's bent bonds).
 #pragma once
 
 #include <algorithm>
@@ -90,14 +92,13 @@ struct BondLanesResult {
   // The failure index from products with the reciprocal thresholds: within 1e-15 relative
   // of FailureIndex's quotients (its terms are never negative where they add up).
   Lanes failure_estimate;
-  Lanes dashpot;          // the Maxwell dashpot's extension after the step [m]
-  Lanes in_short_series;  // 1 where the short series hold, 0 elsewhere
+  Lanes dashpot;  // the Maxwell dashpot's extension after the step [m]
 };
 
-// Whether lane l's result stands for its bond: in the short series, and so far from failure
-// that FailureIndex would certainly say it holds. Otherwise EvaluateBond takes the bond.
+// Whether lane l's result stands for its bond: so far from failure that FailureIndex would
+// certainly say it holds. Otherwise EvaluateBond takes the bond.
 inline bool LaneHolds(const BondLanesResult& r, int l) {
-  return r.in_short_series[l] != 0.0 && r.failure_estimate[l] < 1.0 - 1e-12;
+  return r.failure_estimate[l] < 1.0 - 1e-12;
 }
 
 // Whether bonds of type p need the damping terms, and the Maxwell dashpot.
@@ -193,15 +194,14 @@ inline Mat3Lanes RotationMatrix(const QuatLanes& q) {
 }  // namespace lanes
 
 // EvaluateBond of four bonds (see the conditions above), without failure: the caller reads
-// the mode loads for the failure index and hands a bond that breaks, or that lies outside
-// the short series, to EvaluateBond.
+// the mode loads for the failure index and hands a bond that breaks to EvaluateBond.
 inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResult& r) {
   using namespace lanes;
   const QuatLanes B_i = Product(in.q_i, in.b_i);
   const QuatLanes B_j = Product(in.q_j, in.b_j);
   const QuatLanes dq = Product(Conjugate(B_i), B_j);
 
-  // RotationVector(dq) and HalfRotation(dq), short series only.
+  // RotationVector(dq) and HalfRotation(dq).
   Lanes sign;
   for (int l = 0; l < kBondLanes; ++l) sign[l] = dq.w[l] < 0.0 ? -1.0 : 1.0;
   const Vec3Lanes v{sign * dq.x, sign * dq.y, sign * dq.z};
@@ -209,8 +209,11 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
   const Lanes s2 = v.x * v.x + v.y * v.y + v.z * v.z;
   const Lanes inv_w = 1.0 / w;
   const Lanes t2 = s2 * inv_w * inv_w;
-  const Lanes atan_t_over_t = AtanOverTShortSeries(t2);
-  const Vec3Lanes theta = Scale((2.0 * inv_w) * atan_t_over_t, v);
+  const Lanes scale =
+      AllLanes((s2 < 0.25 * kBondSeriesAngle2 * w * w) & (t2 < 0.25 * kShortSeriesAngle2))
+          ? (2.0 * inv_w) * AtanOverTShortSeries(t2)
+          : Across([&](int l) { return RotationVectorScale(s2[l], w[l]); });
+  const Vec3Lanes theta = Scale(scale, v);
   const Lanes h_w = 1.0 + w;
   const Lanes inv_norm = 1.0 / Sqrt(2.0 * h_w);
   const QuatLanes half{h_w * inv_norm, v.x * inv_norm, v.y * inv_norm, v.z * inv_norm};
@@ -258,7 +261,11 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
   const Mat3Lanes A = RotationMatrix(B_i);
   Vec3Lanes f_i = Times(R_m, f_local);
   const Lanes theta2 = theta.x * theta.x + theta.y * theta.y + theta.z * theta.z;
-  const Lanes c_inverse = InverseLeftJacobianShortSeries(theta2);
+  // Every lane in the short series (the common case), else each lane on its own branch.
+  const bool short_series = AllLanes(theta2 < kShortSeriesAngle2);
+  const Lanes c_inverse =
+      short_series ? InverseLeftJacobianShortSeries(theta2)
+                   : Across([&](int l) { return InverseLeftJacobianCoefficientAt(theta2[l]); });
   const Vec3Lanes pm = Cross(theta, m_local);
   const Vec3Lanes m_world =
       Times(A, Add(Add(m_local, Scale(Splat(0.5), pm)), Scale(c_inverse, Cross(theta, pm))));
@@ -277,10 +284,18 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
     r.dissipated += (Dot(f_damp, v_r) + in.damping_rot * Dot(w_rel, w_rel)) * dt;
   }
 
-  // InverseTimesHalfLeftJacobianTransposeTimes with the short series of both coefficients.
+  // InverseTimesHalfLeftJacobianTransposeTimes.
   const Vec3Lanes moment = Cross(in.d, f_i);
   const Lanes a2 = 0.25 * theta2;
-  const Lanes c1 = LeftJacobianC1ShortSeries(a2), c2 = LeftJacobianC2ShortSeries(a2);
+  Lanes c1, c2;
+  if (short_series) {  // a2 = theta2 / 4 is then too
+    c1 = LeftJacobianC1ShortSeries(a2), c2 = LeftJacobianC2ShortSeries(a2);
+  } else {
+    for (int l = 0; l < kBondLanes; ++l) {
+      const LeftJacobianCoefficients c = LeftJacobianCoefficientsAt(a2[l]);
+      c1[l] = c.c1, c2[l] = c.c2;
+    }
+  }
   const Lanes alpha = InverseTimesHalfAlpha(theta2, c_inverse, c1, c2);
   const Lanes beta = InverseTimesHalfBeta(theta2, c_inverse, c1, c2);
   const Vec3Lanes local = TransposeTimes(A, moment);
@@ -291,11 +306,6 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
   r.force_i = f_i;
   r.torque_i = Add(Add(m_world, couple), Sub(moment, moment_j));
   r.torque_j = Add(Sub(Negate(m_world), couple), moment_j);
-  for (int l = 0; l < kBondLanes; ++l) {
-    const bool short_series = s2[l] < 0.25 * kBondSeriesAngle2 * w[l] * w[l] &&
-                              t2[l] < 0.25 * kShortSeriesAngle2 && theta2[l] < kShortSeriesAngle2;
-    r.in_short_series[l] = short_series ? 1.0 : 0.0;
-  }
 }
 
 }  // namespace fibrenet
