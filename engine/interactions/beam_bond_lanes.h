@@ -214,6 +214,7 @@ inline void EvaluateBondLanes(const BondLanesInput& in, double dt, BondLanesResu
           ? (2.0 * inv_w) * AtanOverTShortSeries(t2)
           : Across([&](int l) { return RotationVectorScale(s2[l], w[l]); });
   const Vec3Lanes theta = Scale(scale, v);
+  // HalfRotation's branch for a half turn (1 + w near 0) never applies: w >= 0 here.
   const Lanes h_w = 1.0 + w;
   const Lanes inv_norm = 1.0 / Sqrt(2.0 * h_w);
   const QuatLanes half{h_w * inv_norm, v.x * inv_norm, v.y * inv_norm, v.z * inv_norm};
