@@ -234,7 +234,8 @@ TEST(BeamBondLanes, TheBondLoopEqualsEvaluateBondInOrder) {
     w.bonds.Add(i, j, type, BondKind::kFibreFibre, c.s);
     w.bonds.damping_factors.push_back(c.damping);
   }
-  // Broken bonds alone and in a run: the groups of four live bonds step over them.
+  // Broken bonds alone and in a run: a group of four that holds one sends its live bonds
+  // through EvaluateBond.
   for (int b : {7, 20, 21, 22, 150}) w.bonds.broken[b] = 1;
   w.settings.dt = kDt;
 
