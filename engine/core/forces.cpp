@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/core/parallel.h"
+#include "engine/core/prefetch.h"
 #include "engine/interactions/beam_bond_lanes.h"
 #include "engine/interactions/contact_lanes.h"
 
@@ -99,6 +100,36 @@ double OverlapEnergy(const World& w, std::int32_t i, std::int32_t j, const Vec3&
   return dist < sum_radii ? EvaluateVanWyk(dist, sum_radii, w.contact.normal).energy : 0.0;
 }
 
+// How far ahead the bond walk asks for memory, in bonds: a bond's partner's data
+// kBondPrefetchDistance bonds ahead, the bond's own record (whose partner index that needs)
+// twice as far. The contact loop asks for a pair's partner kContactPrefetchDistance pairs
+// ahead. Chosen on the 10 mm sheet's ZD compression (docs/performance.md, "Prefetching the
+// partners"): 4 to 32 bonds did about equally well, 32 pairs better than 8 or 16.
+constexpr std::int64_t kBondPrefetchDistance = 8;
+constexpr std::size_t kContactPrefetchDistance = 32;
+
+// Bond b's own data, which the walk reads before its particles'.
+void PrefetchBondRecord(const Bonds& bonds, std::int32_t b) {
+  PrefetchForRead(&bonds.i[b]);
+  PrefetchForRead(&bonds.j[b]);
+  PrefetchForRead(&bonds.type[b]);
+  PrefetchForRead(&bonds.broken[b]);
+  PrefetchObjectForRead(&bonds.state[b]);
+  if (!bonds.damping_factors.empty()) PrefetchForRead(&bonds.damping_factors[b]);
+}
+
+// What the walk reads and writes of particle j, a bond's partner. The first particle i needs
+// nothing: the walk takes the first particles block by block (ForceBuffers::BondOrder), so
+// theirs is in the cache (asking for it too gained nothing).
+void PrefetchPartner(const Particles& p, std::int32_t j) {
+  PrefetchForRead(&p.x[j]);
+  PrefetchObjectForRead(&p.q[j]);
+  PrefetchForRead(&p.v[j]);
+  PrefetchForRead(&p.omega[j]);
+  PrefetchForWrite(&p.force[j]);
+  PrefetchForWrite(&p.torque[j]);
+}
+
 }  // namespace
 
 void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
@@ -138,6 +169,12 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
       const std::int32_t b = order[k];
       const int lane = static_cast<int>((k - first) % kBondLanes);
       if (lane == 0) {
+        for (std::int64_t a = k + kBondPrefetchDistance;
+             a < std::min(last, k + kBondPrefetchDistance + kBondLanes); ++a)
+          PrefetchPartner(p, bonds.j[order[a]]);
+        for (std::int64_t a = k + 2 * kBondPrefetchDistance;
+             a < std::min(last, k + 2 * kBondPrefetchDistance + kBondLanes); ++a)
+          PrefetchBondRecord(bonds, order[a]);
         from_lanes = 0;
         if (lanes_fit(k)) {
           GatherBondLanes(w, lanes_types, order + k, input);
@@ -222,6 +259,13 @@ void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses
       const std::size_t block_end = std::min(block + kBlock, pairs_end);
       std::size_t count = 0;
       for (std::size_t k = block; k < block_end; ++k) {
+        // The partner's position and radius, for the pair this many ahead (the owner's are
+        // near: a row's pairs share it).
+        if (k + kContactPrefetchDistance < pairs_end) {
+          const std::int32_t ahead = nl.Partner(k + kContactPrefetchDistance);
+          PrefetchForRead(&p.x[ahead]);
+          PrefetchForRead(&p.radius[ahead]);
+        }
         const std::int32_t i = nl.Owner(k), j = nl.Partner(k);
         const double sum_radii = p.radius[i] + p.radius[j];
         // Written as "not apart" so that a non-finite distance counts as touching, and its
@@ -240,6 +284,15 @@ void AccumulateContactForces(World& w, ForceBuffers& buffers, StepLosses& losses
       // results equal EvaluateContact's bit for bit and go out in the same order.
       std::size_t c = 0;
       for (; c + kLanes <= count; c += kLanes) {
+        // The next group's partners: their motion, mass, force and torque.
+        for (std::size_t a = c + kLanes; a < std::min(count, c + 2 * kLanes); ++a) {
+          const std::int32_t ahead = nl.Partner(block + touching[a]);
+          PrefetchForRead(&p.v[ahead]);
+          PrefetchForRead(&p.omega[ahead]);
+          PrefetchForRead(&p.mass[ahead]);
+          PrefetchForWrite(&p.force[ahead]);
+          PrefetchForWrite(&p.torque[ahead]);
+        }
         std::size_t k[kLanes];
         for (int l = 0; l < kLanes; ++l) k[l] = block + touching[c + l];
         ContactLanesInput in;
