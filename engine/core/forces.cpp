@@ -109,7 +109,8 @@ constexpr std::int64_t kBondPrefetchDistance = 8;
 constexpr std::size_t kContactPrefetchDistance = 32;
 
 // Bond b's own data, which the walk reads before its particles'.
-void PrefetchBondRecord(const Bonds& bonds, std::int32_t b) {
+// Forced inline, as in prefetch.h: a call to a function that only prefetches is dropped.
+[[gnu::always_inline]] inline void PrefetchBondRecord(const Bonds& bonds, std::int32_t b) {
   PrefetchForRead(&bonds.i[b]);
   PrefetchForRead(&bonds.j[b]);
   PrefetchForRead(&bonds.type[b]);
@@ -121,7 +122,7 @@ void PrefetchBondRecord(const Bonds& bonds, std::int32_t b) {
 // What the walk reads and writes of particle j, a bond's partner. The first particle i needs
 // nothing: the walk takes the first particles block by block (ForceBuffers::BondOrder), so
 // theirs is in the cache (asking for it too gained nothing).
-void PrefetchPartner(const Particles& p, std::int32_t j) {
+[[gnu::always_inline]] inline void PrefetchPartner(const Particles& p, std::int32_t j) {
   PrefetchForRead(&p.x[j]);
   PrefetchObjectForRead(&p.q[j]);
   PrefetchForRead(&p.v[j]);
@@ -169,12 +170,12 @@ void AccumulateBondForces(World& w, ForceBuffers& buffers, StepLosses& losses) {
       const std::int32_t b = order[k];
       const int lane = static_cast<int>((k - first) % kBondLanes);
       if (lane == 0) {
-        for (std::int64_t a = k + kBondPrefetchDistance;
-             a < std::min(last, k + kBondPrefetchDistance + kBondLanes); ++a)
-          PrefetchPartner(p, bonds.j[order[a]]);
-        for (std::int64_t a = k + 2 * kBondPrefetchDistance;
-             a < std::min(last, k + 2 * kBondPrefetchDistance + kBondLanes); ++a)
-          PrefetchBondRecord(bonds, order[a]);
+        for (int l = 0; l < kBondLanes; ++l) {
+          if (k + kBondPrefetchDistance + l < last)
+            PrefetchPartner(p, bonds.j[order[k + kBondPrefetchDistance + l]]);
+          if (k + 2 * kBondPrefetchDistance + l < last)
+            PrefetchBondRecord(bonds, order[k + 2 * kBondPrefetchDistance + l]);
+        }
         from_lanes = 0;
         if (lanes_fit(k)) {
           GatherBondLanes(w, lanes_types, order + k, input);
