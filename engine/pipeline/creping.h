@@ -121,6 +121,12 @@ struct CrepingResult {
   // pressing (EnergyLedger::overlap_regained) [J]
   double overlap_regained = 0.0;
   double peak_blade_force = 0.0;            // [N per m of width]
+  // How far ahead of the tip the web is off the Yankee (peel_front.h) [m]: the median over the
+  // samples with the tip over the strip's middle, and the largest at any sample.
+  double delaminated_length = 0.0, delaminated_length_max = 0.0;
+  // The glued particles' peel energy F_r0^2 / (2 k_n) per m^2 of strip [J/m^2], against the
+  // momentum flux rho_A V^2 of the sheet the blade turns up its face [N/m].
+  double coating_toughness = 0.0, momentum_flux = 0.0;
   double reel_tension = 0.0;                // the reel's mean pull along the face while it
   double peak_reel_tension = 0.0;           // draws the sheet, and its peak [N per m of width]
   std::size_t particles_past_blade = 0;     // most free particles behind the face at once
