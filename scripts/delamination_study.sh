@@ -4,7 +4,7 @@
 # 10 and 100 MPa (shear modulus 0.3 of it) at Yankee speeds 15, 30 and 60 m/s: the coating's
 # toughness against the scraped sheet's momentum flux rho_A V^2, and how far ahead of the
 # blade the web comes off. Two runs side by side, one thread each.
-# Usage: scripts/delamination_study.sh OUT_DIR [FIBRENET]   (about 15 min on 2 cores)
+# Usage: scripts/delamination_study.sh OUT_DIR [FIBRENET]   (about 10 min on 2 cores)
 # Then:  /usr/bin/python3 scripts/plot_delamination_study.py OUT_DIR docs/figures
 set -euo pipefail
 source "$(dirname "$0")/study_start.sh" campaigns/scenes/study-creping.toml "$@"

