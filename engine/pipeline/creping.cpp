@@ -311,6 +311,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   std::uniform_int_distribution<int> pick(0, static_cast<int>(classes.size()) - 1);
   std::map<std::pair<double, int>, std::int32_t> types;
   double r_max = 0.0, x_front = -1e300;
+  const double sheet_mass = net.TotalMass();  // before the anchors join the particles
   std::vector<GlueSite> glue_sites;
   double glue_energy = 0.0;  // what the glued particles store when they fail in peel [J]
   for (std::size_t i = 0; i < n_sheet; ++i) {
@@ -357,8 +358,6 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   // docs/creping.md (the toughness).
   const double strip_area = (x1 - x0) * Ly;
   out.coating_toughness = glue_energy / strip_area;
-  double sheet_mass = 0.0;
-  for (std::size_t i = 0; i < n_sheet; ++i) sheet_mass += p.mass[i];
   out.momentum_flux = sheet_mass / strip_area * s.yankee_speed * s.yankee_speed;
   const PeelFront peel_front(std::move(glue_sites), metrics.thickness_grid, x0);
   std::vector<double> delaminated_middle;  // at the samples with the tip over the middle
