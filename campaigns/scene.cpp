@@ -278,6 +278,7 @@ pipeline::CrepingSettings ReadCreping(TableReader& r, ReadContext& ctx) {
       r.Number("takeaway_height_um", 0, Closed(0, 1e5), "um (0 = 3 x the caliper)") * 1e-6;
   c.takeaway_time = r.Number("takeaway_time_us", 2, OpenClosed(0, 1e6), "us") * 1e-6;
   c.tip_clearance = r.Number("tip_clearance_um", 0, Closed(0, 1000), "um") * 1e-6;
+  c.run_in_length = r.Number("run_in_length_um", 0, Closed(0, 1e5), "um (0 = off)") * 1e-6;
   c.blade_hard_stiffness = r.Number("blade_hard_stiffness_N_per_m", 3e4, Closed(0, 1e9), "N/m");
   c.fibre_hard_stiffness = r.Number("fibre_hard_stiffness_N_per_m", 1.5e4, Closed(0, 1e9), "N/m");
   c.relax_mass_scale = r.Number("relax_mass_scale", 1000, Closed(1, 1e8), "");
@@ -420,6 +421,13 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
                                  ctx.file, spec.pressing->target_thickness * 1e6,
                                  spec.sheet.fibres.diameter.Highest() * 1e6,
                                  spec.sheet.fibres.diameter.Highest() * 1e6));
+  if (spec.creping && spec.creping->run_in_length >
+                          spec.creping->end_zone_fraction * spec.sheet.Lx)
+    throw InputError(fmt::format("{}: creping.run_in_length_um: {:g} um does not end within the "
+                                 "leading end zone; accepted [0, {:g}] um (end_zone_fraction x "
+                                 "cell.size_x_mm)",
+                                 ctx.file, spec.creping->run_in_length * 1e6,
+                                 spec.creping->end_zone_fraction * spec.sheet.Lx * 1e6));
   if (std::string why = spec.Validate(); !why.empty())
     throw InputError(fmt::format("{}: {}", ctx.file, why));
   CheckMemory(spec, ctx.file);

@@ -232,6 +232,8 @@ std::string CrepingSettings::Validate() const {
     return fmt::format("takeaway_time = {} s: must lie in (0, 1]", takeaway_time);
   if (!(tip_clearance >= 0.0 && tip_clearance <= 1e-3))
     return fmt::format("tip_clearance = {} m: must lie in [0, 1e-3]", tip_clearance);
+  if (!(run_in_length >= 0.0 && run_in_length <= 0.1))
+    return fmt::format("run_in_length = {} m: must lie in [0, 0.1] (0 = off)", run_in_length);
   if (curve_samples < 2 || curve_samples > 100000)
     return fmt::format("curve_samples = {}: must lie in [2, 100000]", curve_samples);
   if (impact_frames < 0 || impact_frames > 1000)
@@ -282,6 +284,11 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   std::vector<std::size_t> fibre_fibre, fibre_fibre_middle;
   std::size_t fibre_bonds_intact = 0;
   const double end_zone = s.end_zone_fraction * (x1 - x0);
+  if (s.run_in_length > end_zone)
+    throw InputError(fmt::format(
+        "creping.run_in_length_um = {:.4g}: the run-in must end within the leading end zone, "
+        "whose bonds the metrics leave out; accepted: [0, {:.4g}] um (end_zone_fraction x the "
+        "{:.4g} um strip)", s.run_in_length * 1e6, end_zone * 1e6, (x1 - x0) * 1e6));
   for (std::size_t b = 0; b < n_bonds; ++b) {
     if (w.bonds.broken[b]) continue;
     if (w.bonds.kind[b] == BondKind::kFibreFibre) {
@@ -381,7 +388,10 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   if (std::string warning = sim.Prepare(); !warning.empty()) out.warnings.push_back(warning);
   out.dt = w.settings.dt;
   const double travel = (blade.tip.x() - x0) + run_out;
-  const std::int64_t steps = static_cast<std::int64_t>(std::ceil(travel / (s.yankee_speed * out.dt)));
+  // A run-in at constant acceleration covers its length in twice the time at full speed.
+  const double run_in_time = 2.0 * s.run_in_length / s.yankee_speed;
+  const std::int64_t steps = static_cast<std::int64_t>(
+      std::ceil((travel + s.run_in_length) / (s.yankee_speed * out.dt)));
   if (steps > s.max_steps)
     throw InputError(fmt::format("creping.max_steps: the blade needs {} steps of {:.3g} s to pass "
                                  "the {:.3g} mm sheet; accepted: max_steps >= {}",
@@ -420,7 +430,14 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   };
   Stopwatch clock;
   double next_report = progress.interval_s;
+  const Vec3 full_blade_velocity = blade.velocity, full_reel_velocity = reel.velocity;
   for (std::int64_t step = 1; step <= steps; ++step) {
+    if (run_in_time > 0.0) {
+      // The speed at the step's middle: the tip then covers the run-in length exactly.
+      const double share = std::min(1.0, (static_cast<double>(step) - 0.5) * out.dt / run_in_time);
+      w.blades[0].velocity = share * full_blade_velocity;
+      reel.velocity = share * full_reel_velocity;
+    }
     const Vec3 tip = w.blades[0].tip;
 #pragma omp parallel for schedule(static) if (ThreadsPay(p.size()))
     for (std::int64_t i = 0; i < n_all; ++i)

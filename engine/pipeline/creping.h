@@ -64,6 +64,11 @@ struct CrepingSettings {
   double takeaway_height = 0.0;      // [m] along the face; 0 = 3 x the sheet's caliper
   double takeaway_time = 2e-6;       // [s]
   double tip_clearance = 0.0;        // blade tip above the surface [m]
+  // Run-in: the blade starts from rest and reaches the Yankee speed, at a constant
+  // acceleration, once it has scraped this length of the strip [m], so that the cut leading
+  // end is not rammed end-on at full speed, as a continuous sheet never is. 0 = off (the
+  // blade at full speed from the start). It must lie within the leading end zone.
+  double run_in_length = 0.0;
   // Hard core of the steel blade and Yankee against a collapsed fibre wall (blade.h) [N/m]:
   // about the transverse modulus (1 GPa) times a particle's length along the fibre (32 um).
   double blade_hard_stiffness = 3e4;

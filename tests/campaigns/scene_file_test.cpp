@@ -222,6 +222,16 @@ TEST(SceneFile, NonPhysicalCombinationsAreRejected) {
       ParseScene("[forming]\n[compression]\nvan_wyk_pressure_lo_kPa = 300\n", "w.toml");
   EXPECT_DOUBLE_EQ(open_top.tests.compression->van_wyk_pressure_lo, 3e5);
   EXPECT_EQ(open_top.tests.compression->van_wyk_pressure_hi, 0.0);
+  // A creping run-in that ends beyond the leading end zone (0.2 x 1 mm), and one within it.
+  const std::string run_in = InputErrorOf([] {
+    ParseScene(std::string(kMinimal) + "[creping]\nrun_in_length_um = 250\n", "r.toml");
+  });
+  EXPECT_NE(run_in.find("r.toml: creping.run_in_length_um"), std::string::npos) << run_in;
+  EXPECT_NE(run_in.find("accepted [0, 200] um"), std::string::npos) << run_in;
+  EXPECT_DOUBLE_EQ(
+      ParseScene(std::string(kMinimal) + "[creping]\nrun_in_length_um = 200\n", "r.toml")
+          .creping->run_in_length,
+      200e-6);
   // No forming stage.
   EXPECT_NE(InputErrorOf([] { ParseScene("seed = 1\n", "nf.toml"); }).find("[forming]"),
             std::string::npos);
