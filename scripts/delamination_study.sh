@@ -3,7 +3,9 @@
 # and pressed sheet, creped at adhesion strengths 3, 5, 10 mN (peel = shear) on coatings of
 # 10 and 100 MPa (shear modulus 0.3 of it) at Yankee speeds 15, 30 and 60 m/s: the coating's
 # toughness against the scraped sheet's momentum flux rho_A V^2, and how far ahead of the
-# blade the web comes off. Two runs side by side, one thread each.
+# blade the web comes off; and the pressed sheet's MD tensile stiffness E h (t_base), which the
+# lift-off criterion of scripts/plot_delamination_criterion.py needs. Two runs side by side,
+# one thread each.
 # Usage: scripts/delamination_study.sh OUT_DIR [FIBRENET]   (about 10 min on 2 cores)
 # Then:  /usr/bin/python3 scripts/plot_delamination_study.py OUT_DIR docs/figures
 set -euo pipefail
@@ -26,5 +28,8 @@ for speed in 15 30 60; do
     done
   done
 done
+write_tensile_scene
+"$fibrenet" run tensile.toml --from base/snapshots/pressing.h5 --json --threads 1 --out t_base \
+  > t_base.json 2> t_base.err &
 wait_all
 echo "delamination study written to $out"

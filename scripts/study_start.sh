@@ -2,7 +2,8 @@
 #   source "$(dirname "$0")/study_start.sh" SCENE "$@"      (run from the repository root)
 # Reads OUT_DIR and the optional FIBRENET executable (default build/fibrenet), sets `out`,
 # `fibrenet` and `scene` (both made absolute), creates OUT_DIR and moves into it, and defines
-# wait_all for the scripts that run series side by side. The caller has set -euo pipefail,
+# wait_all for the scripts that run series side by side, and write_tensile_scene for the creping
+# studies. The caller has set -euo pipefail,
 # so a missing OUT_DIR stops it with the usage line.
 scene=$(realpath "$1")
 shift
@@ -16,4 +17,11 @@ wait_all() {
   local pid status=0
   for pid in $(jobs -p); do wait "$pid" || status=$?; done
   return "$status"
+}
+
+# Writes tensile.toml: the scene up to its [creping] table, with an MD tensile test from the
+# pressing snapshot, for the pressed web's tensile stiffness E h (the creping studies).
+write_tensile_scene() {
+  sed '/^\[creping/,$d' "$scene" > tensile.toml
+  printf '[tensile]\ndirection = "MD"\nloading_steps = 100000\nsamples = 100\n' >> tensile.toml
 }
