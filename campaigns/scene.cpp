@@ -421,6 +421,8 @@ PipelineSpec ReadScene(const toml::table& root_table, ReadContext& ctx) {
                                  ctx.file, spec.pressing->target_thickness * 1e6,
                                  spec.sheet.fibres.diameter.Highest() * 1e6,
                                  spec.sheet.fibres.diameter.Highest() * 1e6));
+  // Refused here, before hours of forming; the stage checks it again on the strip it gets,
+  // which a run from another cell's snapshot may make longer or shorter.
   if (spec.creping && spec.creping->run_in_length >
                           spec.creping->end_zone_fraction * spec.sheet.Lx)
     throw InputError(fmt::format("{}: creping.run_in_length_um: {:g} um does not end within the "

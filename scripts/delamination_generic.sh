@@ -42,7 +42,6 @@ for run_in in 0 500; do
     shear=$(awk "BEGIN { print 0.3 * $modulus }")
     name="${web}_e${modulus}"
     if (( run_in > 0 )); then name+="_r${run_in}"; fi
-    [[ -s "$name.json" ]] && continue
     run "$name" "$scene" --from "$web/snapshots/pressing.h5" --until creping --threads 1 \
       --set creping.adhesion.modulus_MPa="$modulus" \
       --set creping.adhesion.shear_modulus_MPa="$shear" --set creping.run_in_length_um="$run_in" &

@@ -42,7 +42,8 @@ def stiffness(folder, name):
 
 
 def runs(folder, pattern, web_of):
-    """(name, creping details, S) of the creping runs NAME.json matching pattern."""
+    """(name, creping details) of the creping runs NAME.json matching pattern, the details with
+    the web's S and the ratio N_peak^2 / (2 S toughness) ("drive") added."""
     out = []
     for path in sorted(glob.glob(os.path.join(folder, pattern + ".json"))):
         name = os.path.basename(path).removesuffix(".json")

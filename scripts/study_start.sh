@@ -3,8 +3,7 @@
 # Reads OUT_DIR and the optional FIBRENET executable (default build/fibrenet), sets `out`,
 # `fibrenet` and `scene` (both made absolute), creates OUT_DIR and moves into it, and defines
 # wait_all for the scripts that run series side by side, and write_tensile_scene for the creping
-# studies. The caller has set -euo pipefail,
-# so a missing OUT_DIR stops it with the usage line.
+# studies. The caller has set -euo pipefail, so a missing OUT_DIR stops it with the usage line.
 scene=$(realpath "$1")
 shift
 out=${1:?usage: $(basename "$0") OUT_DIR [FIBRENET]}
