@@ -49,6 +49,12 @@ Creped CrepeSheet(const CrepingSettings& s) {
   return c;
 }
 
+// The sheet creped at the defaults of Settings(), once per test process (two tests read it).
+const Creped& AtDefaults() {
+  static const Creped creped = CrepeSheet(Settings());
+  return creped;
+}
+
 // Particles in the piece of particle 0, over intact bonds.
 std::size_t PieceOfFirstParticle(const World& w) {
   std::vector<std::vector<std::int32_t>> linked(w.particles.size());
@@ -99,7 +105,7 @@ void ExpectSound(const Creped& c, double mass_before) {
 }
 
 TEST(Creping, StableAtOnceAndTwiceTheYankeeSpeedWithTheImpactEnergyAccounted) {
-  const Creped c = CrepeSheet(Settings());
+  const Creped& c = AtDefaults();
   ExpectSound(c, Pressed().network.TotalMass());
   const CrepingResult& r = c.result;
   EXPECT_GT(r.crepe_frequency, 0.0);
@@ -141,7 +147,7 @@ double EarlyPeakBladeForce(const CrepingResult& r, double share) {
 // end is not rammed at full speed, the run takes the run-in's extra time, and the impact's
 // energy is still accounted for with the blade's speed changing.
 TEST(Creping, RunInSoftensTheBlowOnTheLeadingEnd) {
-  const Creped rammed = CrepeSheet(Settings());
+  const Creped& rammed = AtDefaults();
   CrepingSettings s = Settings();
   s.run_in_length = s.end_zone_fraction * 0.9e-3;
   const Creped run_in = CrepeSheet(s);
