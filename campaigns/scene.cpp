@@ -279,7 +279,7 @@ pipeline::CrepingSettings ReadCreping(TableReader& r, ReadContext& ctx) {
   c.takeaway_time = r.Number("takeaway_time_us", 2, OpenClosed(0, 1e6), "us") * 1e-6;
   c.tip_clearance = r.Number("tip_clearance_um", 0, Closed(0, 1000), "um") * 1e-6;
   c.run_in_length = r.Number("run_in_length_um", 0, Closed(0, 1e5), "um (0 = off)") * 1e-6;
-  c.blade_hard_stiffness = r.Number("blade_hard_stiffness_N_per_m", 3e4, Closed(0, 1e9), "N/m");
+  c.blade_hard_stiffness = r.Number("blade_hard_stiffness_N_per_m", 1.2e5, Closed(0, 1e9), "N/m");
   c.fibre_hard_stiffness = r.Number("fibre_hard_stiffness_N_per_m", 1.5e4, Closed(0, 1e9), "N/m");
   c.relax_mass_scale = r.Number("relax_mass_scale", 1000, Closed(1, 1e8), "");
   c.relax_damping_time = r.Number("relax_damping_time_us", 10, OpenClosed(0, 1e6), "us") * 1e-6;

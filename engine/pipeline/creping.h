@@ -69,12 +69,16 @@ struct CrepingSettings {
   // end is not rammed end-on at full speed, as a continuous sheet never is. 0 = off (the
   // blade at full speed from the start). It must lie within the leading end zone.
   double run_in_length = 0.0;
-  // Hard core of the steel blade and Yankee against a collapsed fibre wall (blade.h) [N/m]:
-  // about the transverse modulus (1 GPa) times a particle's length along the fibre (32 um).
-  double blade_hard_stiffness = 3e4;
+  // Hard core of the steel blade and Yankee (blade.h) [N/m]. It must hold particles out of
+  // the pinch between the face and the Yankee at the tip: at 3e4 (a fibre wall of transverse
+  // modulus 1 GPa over a particle's 32 um) the crushing load of a web with strong bonds
+  // (about 3 kN/m) squeezed a particle under the tip in every run; from 1.2e5 on none passes
+  // and the creping metrics no longer move with it beyond their scatter (docs/creping.md).
+  double blade_hard_stiffness = 1.2e5;
   // Hard core of fibre-fibre contacts during creping (VanWykParams::hard_stiffness): two
-  // collapsed fibre walls in series, half the blade's [N/m]. Without it the pile-up at the
-  // blade pressed cross-sections through each other (centre distance down to 2% of R_i + R_j).
+  // collapsed fibre walls (1 GPa over 32 um each) in series [N/m]. Without it the pile-up at
+  // the blade pressed cross-sections through each other (centre distance down to 2% of
+  // R_i + R_j).
   double fibre_hard_stiffness = 1.5e4;
   AdhesionSettings adhesion;
   // After the blade: the dust and the pieces left on the Yankee are removed, and the creped
