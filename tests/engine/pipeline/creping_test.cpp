@@ -298,8 +298,8 @@ double SettledInFrontOfTheFace(double core, double load) {
   return (w.particles.x[0] - w.blades[0].tip).dot(w.blades[0].face_normal);
 }
 
-// The cut end of a web with strong bonds loads the blade with about 2,800 N/m (5.6 N over the
-// 2 mm strip of docs/creping.md); a force chain at the tip carries a tenth of that. The old
+// The cut end of a web with strong bonds loads the blade with about 2,800 N/m (7 N over the
+// 2.5 mm wide strip of docs/creping.md); a force chain at the tip carries a share of it. The old
 // core (3e4 N/m, which holds k R / 2 = 0.24 N at the face) let it squeeze a particle past the
 // face in every such run; the default core keeps the particle in front.
 TEST(Creping, TheBladesHardCoreHoldsAParticleOutOfThePinchAtTheTip) {
