@@ -7,6 +7,7 @@
 
 #include "campaigns/scene.h"
 #include "engine/core/error.h"
+#include "engine/pipeline/creping.h"
 
 namespace fibrenet::campaigns {
 namespace {
@@ -235,6 +236,43 @@ TEST(SceneFile, NonPhysicalCombinationsAreRejected) {
   // No forming stage.
   EXPECT_NE(InputErrorOf([] { ParseScene("seed = 1\n", "nf.toml"); }).find("[forming]"),
             std::string::npos);
+}
+
+// The scene reader writes each creping default again in the file's units: an empty table
+// must give the engine's defaults, or a default changed in one place only goes unnoticed.
+TEST(SceneFile, AnEmptyCrepingTableGivesTheEngineDefaults) {
+  const pipeline::PipelineSpec spec =
+      ParseScene(std::string(kMinimal) + "[creping]\n[creping.adhesion]\n", "c.toml");
+  const pipeline::CrepingSettings& c = *spec.creping;
+  const pipeline::CrepingSettings d;
+  EXPECT_DOUBLE_EQ(c.yankee_speed, d.yankee_speed);
+  EXPECT_DOUBLE_EQ(c.creping_angle, d.creping_angle);
+  EXPECT_DOUBLE_EQ(c.crepe_ratio, d.crepe_ratio);
+  EXPECT_DOUBLE_EQ(c.takeaway_height, d.takeaway_height);
+  EXPECT_DOUBLE_EQ(c.takeaway_time, d.takeaway_time);
+  EXPECT_DOUBLE_EQ(c.tip_clearance, d.tip_clearance);
+  EXPECT_DOUBLE_EQ(c.run_in_length, d.run_in_length);
+  EXPECT_DOUBLE_EQ(c.blade_hard_stiffness, d.blade_hard_stiffness);
+  EXPECT_DOUBLE_EQ(c.fibre_hard_stiffness, d.fibre_hard_stiffness);
+  EXPECT_DOUBLE_EQ(c.relax_mass_scale, d.relax_mass_scale);
+  EXPECT_DOUBLE_EQ(c.relax_damping_time, d.relax_damping_time);
+  EXPECT_DOUBLE_EQ(c.relax_bond_damping_ratio, d.relax_bond_damping_ratio);
+  EXPECT_DOUBLE_EQ(c.relax_kinetic_ratio, d.relax_kinetic_ratio);
+  EXPECT_DOUBLE_EQ(c.relax_energy_tolerance, d.relax_energy_tolerance);
+  EXPECT_EQ(c.relax_max_steps, d.relax_max_steps);
+  EXPECT_DOUBLE_EQ(c.end_zone_fraction, d.end_zone_fraction);
+  EXPECT_EQ(c.curve_samples, d.curve_samples);
+  EXPECT_EQ(c.impact_frames, d.impact_frames);
+  EXPECT_EQ(c.max_steps, d.max_steps);
+  const pipeline::AdhesionSettings &a = c.adhesion, &ad = d.adhesion;
+  EXPECT_DOUBLE_EQ(a.F_r0, ad.F_r0);
+  EXPECT_DOUBLE_EQ(a.F_s0, ad.F_s0);
+  EXPECT_DOUBLE_EQ(a.strength_cv, ad.strength_cv);
+  EXPECT_DOUBLE_EQ(a.modulus, ad.modulus);
+  EXPECT_DOUBLE_EQ(a.shear_modulus, ad.shear_modulus);
+  EXPECT_DOUBLE_EQ(a.coating_thickness, ad.coating_thickness);
+  EXPECT_DOUBLE_EQ(a.bond_radius_fraction, ad.bond_radius_fraction);
+  EXPECT_DOUBLE_EQ(a.reach, ad.reach);
 }
 
 TEST(SceneFile, MissingFileAndSyntaxErrorsNameTheFile) {
