@@ -129,9 +129,17 @@ def draw(ax, kind, header, cols, label):
         ax.set_xlabel("wavelength (um)")
         ax.set_ylabel("RMS amplitude (um)")
     elif kind == "profile":
-        ax.plot(cols["x_um"], cols["height_um"], label=label or None)
-        ax.set_xlabel("x (um)")
+        # Surface profiles run along x; the crepe profile along the creped sheet (u), with
+        # its waviness and crepe band beside the height.
+        x = header[0]
+        for y in ("height_um", "waviness_um", "folds_um"):
+            if y in cols:
+                name = (label + " " if label else "") + y[:-3]
+                ax.plot(cols[x], cols[y], label=name)
+        ax.set_xlabel(x.replace("_um", " (um)"))
         ax.set_ylabel("height (um)")
+        if "waviness_um" in cols:
+            ax.legend(fontsize=8)
     elif kind == "density":
         # Height on the vertical axis, as the sheet lies.
         ax.plot(cols["density_kg_per_m3"], cols["z_um"], label=label or None)

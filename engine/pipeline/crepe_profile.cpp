@@ -6,21 +6,20 @@
 #include <limits>
 
 #include "engine/pipeline/percentile.h"
+#include "engine/pipeline/profile_filter.h"
 
 namespace fibrenet::pipeline {
 
 namespace {
 
-// Fills NaN entries from the nearest filled entry before them (or after, at the start).
-void FillGaps(std::vector<double>& v) {
-  double last = std::numeric_limits<double>::quiet_NaN();
-  for (double& x : v) {
-    if (std::isnan(x)) x = last;
-    else last = x;
-  }
-  for (auto it = v.rbegin(); it != v.rend(); ++it) {
-    if (std::isnan(*it)) *it = last;
-    else last = *it;
+// Fills NaN entries between filled ones with the straight line between those.
+void Interpolate(std::vector<double>& v) {
+  std::size_t last = 0;
+  for (std::size_t k = 1; k < v.size(); ++k) {
+    if (std::isnan(v[k])) continue;
+    for (std::size_t m = last + 1; m < k; ++m)
+      v[m] = v[last] + (v[k] - v[last]) * double(m - last) / double(k - last);
+    last = k;
   }
 }
 
@@ -44,7 +43,7 @@ CrepeProfile MeasureCrepeProfile(const std::vector<FramePoint>& points, double u
     top[k] = std::isnan(top[k]) ? hi : std::max(top[k], hi);
     bottom[k] = std::isnan(bottom[k]) ? lo : std::min(bottom[k], lo);
   }
-  out.height.assign(nu, nan);
+  std::vector<double> height(nu, nan);
   std::vector<double> tops, bottoms;
   for (int iu = 0; iu < nu; ++iu) {
     double sum = 0.0;
@@ -57,64 +56,64 @@ CrepeProfile MeasureCrepeProfile(const std::vector<FramePoint>& points, double u
       tops.push_back(top[k]);
       bottoms.push_back(bottom[k]);
     }
-    if (filled > 0) out.height[iu] = sum / filled;
+    if (filled > 0) height[iu] = sum / filled;
   }
-  FillGaps(out.height);
+  const auto filled = [](double h) { return !std::isnan(h); };
+  const auto first = std::find_if(height.begin(), height.end(), filled);
+  if (first != height.end()) {
+    const auto last = std::find_if(height.rbegin(), height.rend(), filled).base();
+    out.u0 = u_lo + double(first - height.begin()) * bin;
+    out.height.assign(first, last);
+    Interpolate(out.height);
+  }
   if (!tops.empty())
     out.caliper = Percentile(tops, 1.0 - percentile / 100.0) - Percentile(bottoms, percentile / 100.0);
   return out;
 }
 
-CrepeSpectrum AnalyseCrepe(const std::vector<double>& height, double bin) {
+CrepeSpectrum AnalyseCrepe(const std::vector<double>& height, double bin, const CrepeBand& band) {
   CrepeSpectrum s;
   const int n = static_cast<int>(height.size());
   if (n < 8 || !(bin > 0.0)) return s;
-  // Least-squares line through the profile, removed.
-  double su = 0.0, sh = 0.0, suu = 0.0, suh = 0.0;
+  s.waviness = GaussianRegressionWaviness(height, bin, band.cutoff);
+  // The texture filter's cutoff is half the shortest fold counted, so that folds from there up
+  // pass nearly whole (97% at twice the cutoff).
+  const std::vector<double> smooth =
+      GaussianRegressionWaviness(height, bin, 0.5 * band.shortest_wavelength);
+  s.folds.resize(n);
+  double mean = 0.0, rms = 0.0;
   for (int j = 0; j < n; ++j) {
-    su += j;
-    sh += height[j];
-    suu += double(j) * j;
-    suh += j * height[j];
+    s.folds[j] = smooth[j] - s.waviness[j];
+    mean += s.folds[j] / n;
   }
-  const double slope = (n * suh - su * sh) / (n * suu - su * su);
-  const double offset = (sh - slope * su) / n;
-  std::vector<double> z(n);
-  double rms = 0.0;
-  for (int j = 0; j < n; ++j) {
-    z[j] = height[j] - (offset + slope * j);
-    rms += z[j] * z[j];
-  }
-  s.amplitude = std::sqrt(2.0 * rms / n);
+  for (int j = 0; j < n; ++j) rms += (s.folds[j] - mean) * (s.folds[j] - mean) / n;
+  s.amplitude = std::sqrt(2.0 * rms);
   // Hann window; the amplitude of a sine is recovered by dividing by the window's mean, 1/2.
-  const double pi = 3.14159265358979323846;
-  double best = -1.0;
-  int best_k = 0;
-  std::vector<double> mag;
-  for (int k = 2; k <= n / 2; ++k) {  // k = 1 is a wavelength of the whole profile
+  for (int k = 1; k <= n / 2; ++k) {
     std::complex<double> c = 0.0;
     for (int j = 0; j < n; ++j) {
-      const double w = 0.5 - 0.5 * std::cos(2.0 * pi * j / (n - 1));
-      c += w * z[j] * std::polar(1.0, -2.0 * pi * k * j / n);
+      const double w = 0.5 - 0.5 * std::cos(2.0 * kPi * j / (n - 1));
+      c += w * (s.folds[j] - mean) * std::polar(1.0, -2.0 * kPi * k * j / n);
     }
-    const double a = 2.0 * std::abs(c) / (0.5 * n);
-    mag.push_back(a);
     s.frequencies.push_back(k / (n * bin));
-    s.amplitudes.push_back(a);
-    if (a > best) {
-      best = a;
-      best_k = k;
-    }
+    s.amplitudes.push_back(2.0 * std::abs(c) / (0.5 * n));
   }
-  // Parabolic refinement of the peak on its neighbours (indices in mag are k - 2).
-  double k_peak = best_k;
-  const int m = best_k - 2;
-  if (m > 0 && m + 1 < static_cast<int>(mag.size())) {
-    const double a = mag[m - 1], b = mag[m], c = mag[m + 1];
-    const double denom = a - 2.0 * b + c;
-    if (denom < 0.0) k_peak += 0.5 * (a - c) / denom;
+  // Wavenumbers k (index k - 1) whose wavelength n bin / k lies in the band.
+  const double length = n * bin;
+  const int k_lo = std::max(2, static_cast<int>(std::ceil(length / band.cutoff - 1e-9)));
+  const int k_hi = std::min(n / 2 - 1, static_cast<int>(std::floor(length / band.shortest_wavelength + 1e-9)));
+  const std::vector<double>& a = s.amplitudes;
+  int best = -1;
+  for (int k = k_lo; k <= k_hi; ++k) {
+    const double here = a[k - 1];
+    if (here > a[k - 2] && here > a[k] && here >= band.min_amplitude && (best < 0 || here > a[best - 1]))
+      best = k;
   }
-  s.frequency = k_peak / (n * bin);
+  if (best < 0) return s;
+  // Parabolic refinement of the peak on its neighbours.
+  const double left = a[best - 2], peak = a[best - 1], right = a[best];
+  s.frequency = (best + 0.5 * (left - right) / (left - 2.0 * peak + right)) / length;
+  s.peak_amplitude = peak;
   return s;
 }
 

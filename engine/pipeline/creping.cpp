@@ -76,6 +76,21 @@ std::vector<FramePoint> InFrame(const Particles& p, const std::vector<std::size_
   return pts;
 }
 
+// The crepe band of the settings, its automatic limits from the creped sheet's particles. The
+// texture filter needs a few profile bins per wavelength.
+CrepeBand CrepeBandOf(const CrepingSettings& s, const Particles& p,
+                      const std::vector<std::size_t>& sheet, double bin) {
+  double radius = 0.0;
+  for (std::size_t i : sheet) radius += p.radius[i] / static_cast<double>(sheet.size());
+  CrepeBand band;
+  band.cutoff = s.crepe_cutoff;
+  band.shortest_wavelength = s.crepe_shortest_wavelength > 0.0 ? s.crepe_shortest_wavelength
+                                                               : 8.0 * radius;
+  band.shortest_wavelength = std::min(std::max(band.shortest_wavelength, 4.0 * bin), 0.5 * band.cutoff);
+  band.min_amplitude = s.crepe_min_amplitude > 0.0 ? s.crepe_min_amplitude : radius;
+  return band;
+}
+
 // Drops the particles from n on and the bonds and bond types from the given counts on (the
 // anchors and their adhesive bonds, all appended after the sheet's).
 void DropAnchors(World& w, std::size_t n, std::size_t bonds, std::size_t types) {
@@ -234,6 +249,15 @@ std::string CrepingSettings::Validate() const {
     return fmt::format("tip_clearance = {} m: must lie in [0, 1e-3]", tip_clearance);
   if (!(run_in_length >= 0.0 && run_in_length <= 0.1))
     return fmt::format("run_in_length = {} m: must lie in [0, 0.1] (0 = off)", run_in_length);
+  if (!(crepe_cutoff >= 1e-4 && crepe_cutoff <= 0.02))
+    return fmt::format("crepe_cutoff = {} m: must lie in [1e-4, 0.02]", crepe_cutoff);
+  if (!(crepe_shortest_wavelength >= 0.0 && crepe_shortest_wavelength <= 0.5 * crepe_cutoff))
+    return fmt::format("crepe_shortest_wavelength = {} m: must lie in [0, {}] (0 = 4 particle "
+                       "diameters; at most half the crepe cutoff)", crepe_shortest_wavelength,
+                       0.5 * crepe_cutoff);
+  if (!(crepe_min_amplitude >= 0.0 && crepe_min_amplitude <= 1e-2))
+    return fmt::format("crepe_min_amplitude = {} m: must lie in [0, 0.01] (0 = a particle radius)",
+                       crepe_min_amplitude);
   if (curve_samples < 2 || curve_samples > 100000)
     return fmt::format("curve_samples = {}: must lie in [2, 100000]", curve_samples);
   if (impact_frames < 0 || impact_frames > 1000)
@@ -518,33 +542,66 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   out.dust_mass_fraction = dust_mass / total_mass;
   out.sheet_mass_fraction = mass[sheet_piece] / total_mass;
 
-  // The creped sheet in the frame of the blade face: u up the face, h out of it.
+  // The creped sheet beyond the takeaway height along the face (nearer the tip the pocket is
+  // still folding it), read in its own frame from the blade tip: u along its MD axis (up the
+  // face for a sheet the reel draws along it, along its own length for one that stands off
+  // the face at a tilt, which the face's frame would read as a steep slope), h normal to it
+  // on the face's side.
   const Vec3 tip = w.blades[0].tip;
-  std::vector<std::size_t> creped;
-  for (std::size_t i = 0; i < n_sheet; ++i)
-    if (piece[i] == sheet_piece) creped.push_back(i);
-  const std::vector<FramePoint> pts = InFrame(p, creped, tip, face_up, face_normal);
-  double u_max = takeaway;
-  for (const FramePoint& f : pts) u_max = std::max(u_max, f.x.x());
-  // The first tenth of the creped sheet (its leading end) is left out: it crept before the
-  // folding settled into its rhythm.
-  const double u_hi = u_max - 0.1 * (u_max - takeaway);
-  if (u_hi - takeaway < 10.0 * u_bin) {
+  std::vector<std::size_t> creped, drawn;
+  for (std::size_t i = 0; i < n_sheet; ++i) {
+    if (piece[i] != sheet_piece) continue;
+    creped.push_back(i);
+    if ((p.x[i] - tip).dot(face_up) >= takeaway) drawn.push_back(i);
+  }
+  std::vector<FramePoint> pts;
+  double u_lo = 0.0, u_hi = 0.0;
+  if (!drawn.empty()) {
+    const Mat3 axes = SheetAxes(p, drawn, face_up);
+    const Vec3 normal = axes.row(2).transpose();
+    pts = InFrame(p, drawn, tip, axes.row(0).transpose(),
+                  normal.dot(face_normal) < 0.0 ? Vec3(-normal) : normal);
+    u_lo = 1e300;
+    u_hi = -1e300;
+    for (const FramePoint& f : pts) {
+      u_lo = std::min(u_lo, f.x.x());
+      u_hi = std::max(u_hi, f.x.x());
+    }
+    // The first tenth of it (its leading end) is left out: it crept before the folding
+    // settled into its rhythm.
+    u_hi -= 0.1 * (u_hi - u_lo);
+  }
+  if (u_hi - u_lo < 10.0 * u_bin) {
     out.warnings.push_back(fmt::format(
         "creping: only {:.0f} um of creped sheet beyond the takeaway height ({:.0f} um): too "
         "short for a crepe spectrum; use a longer cell (cell.size_x_mm)",
-        (u_hi - takeaway) * 1e6, takeaway * 1e6));
+        std::max(0.0, u_hi - u_lo) * 1e6, takeaway * 1e6));
   } else {
-    const CrepeProfile profile = MeasureCrepeProfile(pts, takeaway, u_hi, u_bin, w.cell.lo.y(),
+    const CrepeProfile profile = MeasureCrepeProfile(pts, u_lo, u_hi, u_bin, w.cell.lo.y(),
                                                      w.cell.hi.y(), y_bin, metrics.surface_percentile);
-    const CrepeSpectrum spectrum = AnalyseCrepe(profile.height, u_bin);
+    const CrepeBand band = CrepeBandOf(s, p, drawn, u_bin);
+    const CrepeSpectrum spectrum = AnalyseCrepe(profile.height, u_bin, band);
     out.crepe_frequency = spectrum.frequency;
     out.crepe_amplitude = spectrum.amplitude;
     out.caliper_at_blade = profile.caliper;
+    const double length = profile.height.size() * u_bin;
+    if (spectrum.frequency == 0.0 && 0.5 * length < band.shortest_wavelength)
+      out.warnings.push_back(fmt::format(
+          "creping: no crepe read: the {:.0f} um of creped sheet cannot hold two folds of the "
+          "shortest wavelength counted ({:.0f} um; crepe_frequency 0); use a longer cell "
+          "(cell.size_x_mm)", length * 1e6, band.shortest_wavelength * 1e6));
+    else if (spectrum.frequency == 0.0)
+      out.warnings.push_back(fmt::format(
+          "creping: no crepe folds on the {:.2f} mm of creped sheet: its profile has no peak "
+          "of {:.1f} um or more at wavelengths from {:.0f} to {:.0f} um (crepe_frequency 0)",
+          length * 1e3, band.min_amplitude * 1e6, band.shortest_wavelength * 1e6,
+          std::min(band.cutoff, 0.5 * length) * 1e6));
     out.crepe_profile.name = "crepe_profile";
-    out.crepe_profile.columns = {"u_um", "height_um"};
+    out.crepe_profile.columns = {"u_um", "height_um", "waviness_um", "folds_um"};
     for (std::size_t k = 0; k < profile.height.size(); ++k)
-      out.crepe_profile.Add({(takeaway + (k + 0.5) * u_bin) * 1e6, profile.height[k] * 1e6});
+      out.crepe_profile.Add({(profile.u0 + (k + 0.5) * u_bin) * 1e6, profile.height[k] * 1e6,
+                             spectrum.waviness.empty() ? profile.height[k] * 1e6 : spectrum.waviness[k] * 1e6,
+                             spectrum.folds.empty() ? 0.0 : spectrum.folds[k] * 1e6});
   }
   if (out.particles_past_blade > 0)
     out.warnings.push_back(fmt::format("creping: {} particles got behind the blade face",

@@ -25,7 +25,8 @@
 // blade has not reached, lifted off the Yankee ahead of it, is not drawn.
 //
 // Metrics. The creped sheet (the largest piece held together by intact bonds, beyond the
-// takeaway height) is read in its own frame (u along the face, h normal to it):
+// takeaway height) is read in its own frame (u along its MD axis, the principal axis of its
+// mass in the plane of MD and thickness; h normal to it):
 // crepe_profile.h gives the crepe frequency (folds per mm of creped sheet), the amplitude and
 // the caliper at the blade. Dust: every other piece. bulk_gain is the creped sheet's caliper
 // once it has come to rest off the blade (below) against the sheet's before creping.
@@ -97,6 +98,15 @@ struct CrepingSettings {
   // of its length at either cut end is left out (the blade's first blow on the leading end
   // breaks bonds that a continuous sheet keeps). [0, 0.45]
   double end_zone_fraction = 0.2;
+  // The crepe band (crepe_profile.h): the waviness cutoff, 800 um as surface metrology
+  // takes for profiles whose elements are 0.13-0.4 mm apart (ISO 4288), so that folds of
+  // up to 0.4 mm pass whole and the sheet's millimetre-long curving away from the blade
+  // does not; the shortest fold wavelength (0 = 4 mean particle diameters of the sheet:
+  // shorter is the fibres' own texture); a fold train's least amplitude (0 = the sheet's
+  // mean particle radius). [m]
+  double crepe_cutoff = 800e-6;
+  double crepe_shortest_wavelength = 0.0;
+  double crepe_min_amplitude = 0.0;
   int curve_samples = 200;           // rows of the bond-loss curve
   int impact_frames = 0;             // snapshots kept during the impact (paper Fig. 6)
   std::int64_t max_steps = 20'000'000;
@@ -115,11 +125,11 @@ struct CrepingResult {
   double bonds_broken_fraction_all = 0.0;  // the same over the whole strip
   double fibre_bonds_broken = 0.0;         // intra-fibre bonds broken (fibres that broke)
   double adhesive_broken_fraction = 0.0;
-  double crepe_frequency = 0.0;             // [1/m] of creped sheet
-  double crepe_amplitude = 0.0;             // [m]
+  double crepe_frequency = 0.0;             // [1/m] of creped sheet; 0: no fold train
+  double crepe_amplitude = 0.0;             // [m] sqrt(2) x the crepe band's RMS
   // Plate calipers [m]: of the sheet before creping and of the creped sheet at rest, both
-  // in the sheet's frame (bulk_gain = after / before), and of the creped sheet in the blade
-  // face's frame as the blade leaves it (caliper_at_blade).
+  // in the sheet's frame (bulk_gain = after / before), and of the creped sheet in its own
+  // frame as the blade leaves it (caliper_at_blade).
   double caliper_before = 0.0, caliper_after = 0.0, caliper_at_blade = 0.0;
   double bulk_gain = 0.0;
   std::size_t dust_count = 0;

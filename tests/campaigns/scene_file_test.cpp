@@ -261,6 +261,9 @@ TEST(SceneFile, AnEmptyCrepingTableGivesTheEngineDefaults) {
   EXPECT_DOUBLE_EQ(c.relax_energy_tolerance, d.relax_energy_tolerance);
   EXPECT_EQ(c.relax_max_steps, d.relax_max_steps);
   EXPECT_DOUBLE_EQ(c.end_zone_fraction, d.end_zone_fraction);
+  EXPECT_DOUBLE_EQ(c.crepe_cutoff, d.crepe_cutoff);
+  EXPECT_DOUBLE_EQ(c.crepe_shortest_wavelength, d.crepe_shortest_wavelength);
+  EXPECT_DOUBLE_EQ(c.crepe_min_amplitude, d.crepe_min_amplitude);
   EXPECT_EQ(c.curve_samples, d.curve_samples);
   EXPECT_EQ(c.impact_frames, d.impact_frames);
   EXPECT_EQ(c.max_steps, d.max_steps);

@@ -6,11 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
+#include <string>
 
 #include "engine/core/blade.h"
 #include "engine/core/simulation.h"
 #include "engine/pipeline/creping.h"
-#include "engine/pipeline/crepe_profile.h"
 #include "engine/pipeline/metrics.h"
 #include "engine/pipeline/pipeline.h"
 #include "engine/pipeline/reel.h"
@@ -109,8 +110,22 @@ TEST(Creping, StableAtOnceAndTwiceTheYankeeSpeedWithTheImpactEnergyAccounted) {
   const Creped& c = AtDefaults();
   ExpectSound(c, Pressed().network.TotalMass());
   const CrepingResult& r = c.result;
-  EXPECT_GT(r.crepe_frequency, 0.0);
+  // The crepe is read on the creped sheet's profile: a fold train within the band, or none
+  // and a warning that says so (the reading itself is checked on known profiles in
+  // crepe_profile_test.cpp).
+  EXPECT_FALSE(r.crepe_profile.rows.empty());
   EXPECT_GT(r.crepe_amplitude, 0.0);
+  if (r.crepe_frequency > 0.0) {
+    const std::vector<double>& radius = Pressed().network.world.particles.radius;
+    const double mean_radius = std::accumulate(radius.begin(), radius.end(), 0.0) / radius.size();
+    EXPECT_GE(r.crepe_frequency, 1.0 / Settings().crepe_cutoff);
+    // The band's shortest fold is 4 mean diameters of the drawn part: allow for its mean.
+    EXPECT_LE(r.crepe_frequency, 1.25 / (8.0 * mean_radius));
+  } else {
+    EXPECT_NE(std::find_if(r.warnings.begin(), r.warnings.end(),
+                           [](const std::string& w) { return w.find("crepe") != std::string::npos; }),
+              r.warnings.end());
+  }
   EXPECT_GT(r.bulk_gain, 1.0) << "a creped sheet is bulkier";
   // The bulk is read on the creped sheet at rest, in its own frame: the network metrics'
   // thickness measure (square columns instead of MD bins) reads the same caliper to a few
@@ -119,8 +134,9 @@ TEST(Creping, StableAtOnceAndTwiceTheYankeeSpeedWithTheImpactEnergyAccounted) {
   const double thickness = Thickness(c.net.world, m.thickness_grid, m.surface_percentile);
   EXPECT_NEAR(r.caliper_after / thickness, 1.0, 0.05);
   std::printf("bulk gain %.3f: caliper %.1f um at rest (thickness %.1f um), %.1f um at the "
-              "blade, %.1f um before\n", r.bulk_gain, r.caliper_after * 1e6, thickness * 1e6,
-              r.caliper_at_blade * 1e6, r.caliper_before * 1e6);
+              "blade, %.1f um before; crepe %.2f folds/mm, %.1f um\n", r.bulk_gain,
+              r.caliper_after * 1e6, thickness * 1e6, r.caliper_at_blade * 1e6,
+              r.caliper_before * 1e6, r.crepe_frequency * 1e-3, r.crepe_amplitude * 1e6);
   // The bond-loss curve starts intact and never heals.
   const std::vector<double> ff = r.bond_loss.Values("fibre_fibre_broken_fraction");
   ASSERT_GE(ff.size(), 10u);
@@ -343,28 +359,6 @@ TEST(Reel, DrawsOnlyTheSheetTheBladeHasPassedBeyondTheTakeawayHeight) {
   EXPECT_EQ(reel.Force(p, anchor, blade.tip), Vec3::Zero());
   // Once the blade has passed where it lay, the same lifted particle is drawn.
   EXPECT_NE(reel.Force(p, ahead, Vec3(0.85e-3, 0.0, 0.0)), Vec3::Zero());
-}
-
-TEST(CrepeProfile, FindsTheFrequencyAndAmplitudeOfASineProfile) {
-  const double bin = 5e-6, wavelength = 180e-6, amplitude = 20e-6;
-  std::vector<double> h;
-  for (int k = 0; k < 400; ++k)
-    h.push_back(100e-6 + 0.02 * k * bin + amplitude * std::sin(2.0 * kPi * k * bin / wavelength));
-  const CrepeSpectrum s = AnalyseCrepe(h, bin);
-  EXPECT_NEAR(s.frequency, 1.0 / wavelength, 0.02 / wavelength);
-  EXPECT_NEAR(s.amplitude, amplitude, 0.05 * amplitude);
-}
-
-TEST(CrepeProfile, CaliperOfAFlatLayerIsItsThickness) {
-  std::vector<FramePoint> pts;
-  for (int i = 0; i < 40; ++i)
-    for (int j = 0; j < 10; ++j)
-      for (int layer = 0; layer < 3; ++layer)
-        pts.push_back({Vec3(i * 10e-6 + 5e-6, j * 50e-6 + 25e-6, 16e-6 + layer * 32e-6), 16e-6});
-  const CrepeProfile p = MeasureCrepeProfile(pts, 0.0, 400e-6, 10e-6, 0.0, 500e-6, 50e-6, 1.0);
-  EXPECT_NEAR(p.caliper, 96e-6, 1e-12);
-  ASSERT_EQ(p.height.size(), 40u);
-  for (double h : p.height) EXPECT_NEAR(h, 96e-6, 1e-12);
 }
 
 }  // namespace
