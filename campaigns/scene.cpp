@@ -290,8 +290,8 @@ pipeline::CrepingSettings ReadCreping(TableReader& r, ReadContext& ctx) {
   c.relax_max_steps = r.Integer("relax_max_steps", 50'000, 0, 10'000'000'000LL);
   c.end_zone_fraction = r.Number("end_zone_fraction", 0.2, Closed(0, 0.45), "of the strip length");
   c.crepe_cutoff = r.Number("crepe_cutoff_um", 800, Closed(100, 20000), "um") * 1e-6;
-  c.crepe_shortest_wavelength =
-      r.Number("crepe_shortest_wavelength_um", 0, Closed(0, 10000), "um (0 = 4 particle diameters)") * 1e-6;
+  c.crepe_shortest_wavelength = r.Number("crepe_shortest_wavelength_um", 0, Closed(0, 10000),
+                                         "um (0 = 4 particle diameters)") * 1e-6;
   c.crepe_min_amplitude =
       r.Number("crepe_min_amplitude_um", 0, Closed(0, 10000), "um (0 = a particle radius)") * 1e-6;
   c.curve_samples = static_cast<int>(r.Integer("curve_samples", 200, 2, 100000));

@@ -101,12 +101,14 @@ CrepeSpectrum AnalyseCrepe(const std::vector<double>& height, double bin, const 
   // Wavenumbers k (index k - 1) whose wavelength n bin / k lies in the band.
   const double length = n * bin;
   const int k_lo = std::max(2, static_cast<int>(std::ceil(length / band.cutoff - 1e-9)));
-  const int k_hi = std::min(n / 2 - 1, static_cast<int>(std::floor(length / band.shortest_wavelength + 1e-9)));
+  const int k_hi =
+      std::min(n / 2 - 1, static_cast<int>(std::floor(length / band.shortest_wavelength + 1e-9)));
   const std::vector<double>& a = s.amplitudes;
   int best = -1;
   for (int k = k_lo; k <= k_hi; ++k) {
     const double here = a[k - 1];
-    if (here > a[k - 2] && here > a[k] && here >= band.min_amplitude && (best < 0 || here > a[best - 1]))
+    if (here > a[k - 2] && here > a[k] && here >= band.min_amplitude &&
+        (best < 0 || here > a[best - 1]))
       best = k;
   }
   if (best < 0) return s;

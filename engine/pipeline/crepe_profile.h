@@ -4,13 +4,13 @@
 // surface in each (u, y) bin, and the MD height profile is that surface averaged across y.
 //
 // The folds are read the way surface metrology separates roughness from waviness: the
-// sheet's own long shape (a sheet curving away from the blade, a strip bowed over millimetres)
-// is the waviness, removed by a Gaussian regression filter of cutoff `cutoff`
+// sheet's own long shape (a sheet curving away from the blade, a strip bowed over
+// millimetres) is the waviness, removed by a Gaussian regression filter of cutoff `cutoff`
 // (profile_filter.h); the particles' own texture is removed the same way, with half the
-// shortest fold wavelength counted, `shortest_wavelength`, as its cutoff. What is left is the crepe band. Its spectrum (Hann-windowed, the
-// profile has two ends) has a fold train where it has a peak that rises above both
-// neighbours with an amplitude of at least `min_amplitude`: folds lower than a fibre's
-// radius are the surface's texture, not crepe.
+// shortest fold wavelength counted, `shortest_wavelength`, as its cutoff. What is left is
+// the crepe band. Its spectrum (Hann-windowed: the profile has two ends) has a fold train
+// where it has a peak that rises above both neighbours with an amplitude of at least
+// `min_amplitude`: folds lower than a fibre's radius are the surface's texture, not crepe.
 #pragma once
 
 #include <vector>
@@ -44,15 +44,15 @@ CrepeProfile MeasureCrepeProfile(const std::vector<FramePoint>& points, double u
 
 // The wavelengths that count as folds [m].
 struct CrepeBand {
-  double cutoff = 800e-6;              // longest: the waviness filter's cutoff
-  double shortest_wavelength = 128e-6; // shortest: the texture filter's cutoff
-  double min_amplitude = 16e-6;        // a fold train's least amplitude at its peak
+  double cutoff = 800e-6;               // longest: the waviness filter's cutoff
+  double shortest_wavelength = 128e-6;  // shortest: the texture filter's cutoff
+  double min_amplitude = 16e-6;         // a fold train's least amplitude at its peak
 };
 
 struct CrepeSpectrum {
-  double frequency = 0.0;       // the fold train's folds per unit length; 0: none [1/m]
-  double peak_amplitude = 0.0;  // a sine's amplitude at that peak [m]
-  double amplitude = 0.0;       // sqrt(2) x the RMS of the crepe band [m]
+  double frequency = 0.0;        // the fold train's folds per unit length; 0: none [1/m]
+  double peak_amplitude = 0.0;   // a sine's amplitude at that peak [m]
+  double amplitude = 0.0;        // sqrt(2) x the RMS of the crepe band [m]
   std::vector<double> waviness;  // the profile's long shape [m]
   std::vector<double> folds;     // the crepe band: profile - waviness - texture [m]
   std::vector<double> frequencies, amplitudes;  // the crepe band's one-sided spectrum [1/m], [m]

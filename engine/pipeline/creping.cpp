@@ -84,9 +84,10 @@ CrepeBand CrepeBandOf(const CrepingSettings& s, const Particles& p,
   for (std::size_t i : sheet) radius += p.radius[i] / static_cast<double>(sheet.size());
   CrepeBand band;
   band.cutoff = s.crepe_cutoff;
-  band.shortest_wavelength = s.crepe_shortest_wavelength > 0.0 ? s.crepe_shortest_wavelength
-                                                               : 8.0 * radius;
-  band.shortest_wavelength = std::min(std::max(band.shortest_wavelength, 4.0 * bin), 0.5 * band.cutoff);
+  band.shortest_wavelength =
+      s.crepe_shortest_wavelength > 0.0 ? s.crepe_shortest_wavelength : 8.0 * radius;
+  band.shortest_wavelength =
+      std::min(std::max(band.shortest_wavelength, 4.0 * bin), 0.5 * band.cutoff);
   band.min_amplitude = s.crepe_min_amplitude > 0.0 ? s.crepe_min_amplitude : radius;
   return band;
 }
@@ -252,9 +253,10 @@ std::string CrepingSettings::Validate() const {
   if (!(crepe_cutoff >= 1e-4 && crepe_cutoff <= 0.02))
     return fmt::format("crepe_cutoff = {} m: must lie in [1e-4, 0.02]", crepe_cutoff);
   if (!(crepe_shortest_wavelength >= 0.0 && crepe_shortest_wavelength <= 0.5 * crepe_cutoff))
-    return fmt::format("crepe_shortest_wavelength = {} m: must lie in [0, {}] (0 = 4 particle "
-                       "diameters; at most half the crepe cutoff)", crepe_shortest_wavelength,
-                       0.5 * crepe_cutoff);
+    return fmt::format(
+        "crepe_shortest_wavelength = {} m: must lie in [0, {}] (0 = 4 particle "
+        "diameters; at most half the crepe cutoff)",
+        crepe_shortest_wavelength, 0.5 * crepe_cutoff);
   if (!(crepe_min_amplitude >= 0.0 && crepe_min_amplitude <= 1e-2))
     return fmt::format("crepe_min_amplitude = {} m: must lie in [0, 0.01] (0 = a particle radius)",
                        crepe_min_amplitude);
@@ -577,8 +579,8 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
         "short for a crepe spectrum; use a longer cell (cell.size_x_mm)",
         std::max(0.0, u_hi - u_lo) * 1e6, takeaway * 1e6));
   } else {
-    const CrepeProfile profile = MeasureCrepeProfile(pts, u_lo, u_hi, u_bin, w.cell.lo.y(),
-                                                     w.cell.hi.y(), y_bin, metrics.surface_percentile);
+    const CrepeProfile profile = MeasureCrepeProfile(
+        pts, u_lo, u_hi, u_bin, w.cell.lo.y(), w.cell.hi.y(), y_bin, metrics.surface_percentile);
     const CrepeBand band = CrepeBandOf(s, p, drawn, u_bin);
     const CrepeSpectrum spectrum = AnalyseCrepe(profile.height, u_bin, band);
     out.crepe_frequency = spectrum.frequency;
@@ -589,7 +591,8 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
       out.warnings.push_back(fmt::format(
           "creping: no crepe read: the {:.0f} um of creped sheet cannot hold two folds of the "
           "shortest wavelength counted ({:.0f} um; crepe_frequency 0); use a longer cell "
-          "(cell.size_x_mm)", length * 1e6, band.shortest_wavelength * 1e6));
+          "(cell.size_x_mm)",
+          length * 1e6, band.shortest_wavelength * 1e6));
     else if (spectrum.frequency == 0.0)
       out.warnings.push_back(fmt::format(
           "creping: no crepe folds on the {:.2f} mm of creped sheet: its profile has no peak "
@@ -599,9 +602,10 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     out.crepe_profile.name = "crepe_profile";
     out.crepe_profile.columns = {"u_um", "height_um", "waviness_um", "folds_um"};
     for (std::size_t k = 0; k < profile.height.size(); ++k)
-      out.crepe_profile.Add({(profile.u0 + (k + 0.5) * u_bin) * 1e6, profile.height[k] * 1e6,
-                             spectrum.waviness.empty() ? profile.height[k] * 1e6 : spectrum.waviness[k] * 1e6,
-                             spectrum.folds.empty() ? 0.0 : spectrum.folds[k] * 1e6});
+      out.crepe_profile.Add(
+          {(profile.u0 + (k + 0.5) * u_bin) * 1e6, profile.height[k] * 1e6,
+           spectrum.waviness.empty() ? profile.height[k] * 1e6 : spectrum.waviness[k] * 1e6,
+           spectrum.folds.empty() ? 0.0 : spectrum.folds[k] * 1e6});
   }
   if (out.particles_past_blade > 0)
     out.warnings.push_back(fmt::format("creping: {} particles got behind the blade face",

@@ -1,9 +1,8 @@
 #include "engine/pipeline/profile_filter.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/Dense>
 
 #include "engine/core/types.h"
 

@@ -1,13 +1,14 @@
 // The crepe read from a height profile: the waviness filter against its definition (a
 // parabola kept whole, half a sine at the cutoff), and the crepe band on profiles whose folds
 // are known: under a creped sheet's long shape, and absent.
+#include "engine/pipeline/crepe_profile.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
 #include "engine/core/types.h"
-#include "engine/pipeline/crepe_profile.h"
 #include "engine/pipeline/profile_filter.h"
 
 namespace fibrenet::pipeline {
@@ -42,10 +43,13 @@ TEST(ProfileFilter, KeepsAParabolaWholeToItsEnds) {
 TEST(ProfileFilter, PassesHalfASineAtTheCutoffAndSeparatesTheBands) {
   const double bin = 10e-6, cutoff = 800e-6;
   // At the cutoff: half the amplitude (the definition of the cutoff).
-  EXPECT_NEAR(MiddleAmplitude(GaussianRegressionWaviness(Sine(2000, bin, cutoff), bin, cutoff)), 0.5, 0.01);
+  EXPECT_NEAR(MiddleAmplitude(GaussianRegressionWaviness(Sine(2000, bin, cutoff), bin, cutoff)),
+              0.5, 0.01);
   // Half the cutoff is roughness (under 2% left in the waviness), five cutoffs waviness.
-  EXPECT_LT(MiddleAmplitude(GaussianRegressionWaviness(Sine(2000, bin, 0.5 * cutoff), bin, cutoff)), 0.02);
-  EXPECT_GT(MiddleAmplitude(GaussianRegressionWaviness(Sine(2000, bin, 5.0 * cutoff), bin, cutoff)), 0.99);
+  EXPECT_LT(MiddleAmplitude(GaussianRegressionWaviness(Sine(2000, bin, 0.5 * cutoff), bin, cutoff)),
+            0.02);
+  EXPECT_GT(MiddleAmplitude(GaussianRegressionWaviness(Sine(2000, bin, 5.0 * cutoff), bin, cutoff)),
+            0.99);
 }
 
 TEST(CrepeProfile, FindsTheFrequencyAndAmplitudeOfASineProfile) {
@@ -97,7 +101,8 @@ TEST(CrepeProfile, ReadsNoFoldsWhereNoneStandAboveTheBar) {
   // The same 5 um folds count once the bar is lowered under them.
   CrepeBand fine;
   fine.min_amplitude = 3e-6;
-  EXPECT_NEAR(AnalyseCrepe(CrepedSheet(bin, 5e-6), bin, fine).frequency, 1.0 / 260e-6, 0.02 / 260e-6);
+  EXPECT_NEAR(AnalyseCrepe(CrepedSheet(bin, 5e-6), bin, fine).frequency, 1.0 / 260e-6,
+              0.02 / 260e-6);
 }
 
 TEST(CrepeProfile, CoversOnlyTheStretchTheSheetReaches) {
@@ -112,7 +117,8 @@ TEST(CrepeProfile, CoversOnlyTheStretchTheSheetReaches) {
   const CrepeProfile p = MeasureCrepeProfile(pts, 0.0, 400e-6, 10e-6, 0.0, 50e-6, 50e-6, 1.0);
   EXPECT_NEAR(p.u0, 100e-6, 1e-12);
   ASSERT_EQ(p.height.size(), 20u);
-  for (int k = 0; k < 20; ++k) EXPECT_NEAR(p.height[k], 0.1 * (105e-6 + k * 10e-6) + 16e-6, 1e-12) << k;
+  for (int k = 0; k < 20; ++k)
+    EXPECT_NEAR(p.height[k], 0.1 * (105e-6 + k * 10e-6) + 16e-6, 1e-12) << k;
 }
 
 TEST(CrepeProfile, CaliperOfAFlatLayerIsItsThickness) {

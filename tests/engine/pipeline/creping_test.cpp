@@ -1,6 +1,8 @@
 // Creping of a small pressed sheet (0.9 mm along MD): stable at the default Yankee speed and
 // at twice it, nothing through the blade, the impact's energy accounted for, the sheet
 // scraped off the Yankee, bonds lost, and a crepe read from the creped sheet.
+#include "engine/pipeline/creping.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 
 #include "engine/core/blade.h"
 #include "engine/core/simulation.h"
-#include "engine/pipeline/creping.h"
 #include "engine/pipeline/metrics.h"
 #include "engine/pipeline/pipeline.h"
 #include "engine/pipeline/reel.h"
@@ -122,9 +123,10 @@ TEST(Creping, StableAtOnceAndTwiceTheYankeeSpeedWithTheImpactEnergyAccounted) {
     // The band's shortest fold is 4 mean diameters of the drawn part: allow for its mean.
     EXPECT_LE(r.crepe_frequency, 1.25 / (8.0 * mean_radius));
   } else {
-    EXPECT_NE(std::find_if(r.warnings.begin(), r.warnings.end(),
-                           [](const std::string& w) { return w.find("crepe") != std::string::npos; }),
-              r.warnings.end());
+    EXPECT_NE(
+        std::find_if(r.warnings.begin(), r.warnings.end(),
+                     [](const std::string& w) { return w.find("crepe") != std::string::npos; }),
+        r.warnings.end());
   }
   EXPECT_GT(r.bulk_gain, 1.0) << "a creped sheet is bulkier";
   // The bulk is read on the creped sheet at rest, in its own frame: the network metrics'
@@ -133,10 +135,11 @@ TEST(Creping, StableAtOnceAndTwiceTheYankeeSpeedWithTheImpactEnergyAccounted) {
   const MetricsSettings m;
   const double thickness = Thickness(c.net.world, m.thickness_grid, m.surface_percentile);
   EXPECT_NEAR(r.caliper_after / thickness, 1.0, 0.05);
-  std::printf("bulk gain %.3f: caliper %.1f um at rest (thickness %.1f um), %.1f um at the "
-              "blade, %.1f um before; crepe %.2f folds/mm, %.1f um\n", r.bulk_gain,
-              r.caliper_after * 1e6, thickness * 1e6, r.caliper_at_blade * 1e6,
-              r.caliper_before * 1e6, r.crepe_frequency * 1e-3, r.crepe_amplitude * 1e6);
+  std::printf(
+      "bulk gain %.3f: caliper %.1f um at rest (thickness %.1f um), %.1f um at the "
+      "blade, %.1f um before; crepe %.2f folds/mm, %.1f um\n",
+      r.bulk_gain, r.caliper_after * 1e6, thickness * 1e6, r.caliper_at_blade * 1e6,
+      r.caliper_before * 1e6, r.crepe_frequency * 1e-3, r.crepe_amplitude * 1e6);
   // The bond-loss curve starts intact and never heals.
   const std::vector<double> ff = r.bond_loss.Values("fibre_fibre_broken_fraction");
   ASSERT_GE(ff.size(), 10u);
