@@ -23,6 +23,22 @@ void Interpolate(std::vector<double>& v) {
   }
 }
 
+// Folds of the crepe band: rises from below mean - h to above mean + h (a profile element
+// with a height discrimination of h, as roughness counts its elements).
+int CountFolds(const std::vector<double>& band, double mean, double h) {
+  int folds = 0;
+  int side = 0;  // -1 last beyond the lower level, +1 beyond the upper, 0 neither yet
+  for (double v : band) {
+    if (v < mean - h) {
+      side = -1;
+    } else if (v > mean + h) {
+      if (side < 0) ++folds;
+      side = 1;
+    }
+  }
+  return folds;
+}
+
 }  // namespace
 
 CrepeProfile MeasureCrepeProfile(const std::vector<FramePoint>& points, double u_lo, double u_hi,
@@ -107,15 +123,15 @@ CrepeSpectrum AnalyseCrepe(const std::vector<double>& height, double bin, const 
   int best = -1;
   for (int k = k_lo; k <= k_hi; ++k) {
     const double here = a[k - 1];
-    if (here > a[k - 2] && here > a[k] && here >= band.min_amplitude &&
-        (best < 0 || here > a[best - 1]))
-      best = k;
+    if (here > a[k - 2] && here > a[k] && (best < 0 || here > a[best - 1])) best = k;
   }
+  s.fold_count = CountFolds(s.folds, mean, band.min_amplitude);
   if (best < 0) return s;
+  s.peak_amplitude = a[best - 1];
+  if (s.peak_amplitude < band.min_amplitude || s.fold_count < kFoldsInATrain) return s;
   // Parabolic refinement of the peak on its neighbours.
   const double left = a[best - 2], peak = a[best - 1], right = a[best];
   s.frequency = (best + 0.5 * (left - right) / (left - 2.0 * peak + right)) / length;
-  s.peak_amplitude = peak;
   return s;
 }
 

@@ -10,7 +10,8 @@
 // shortest fold wavelength counted, `shortest_wavelength`, as its cutoff. What is left is
 // the crepe band. Its spectrum (Hann-windowed: the profile has two ends) has a fold train
 // where it has a peak that rises above both neighbours with an amplitude of at least
-// `min_amplitude`: folds lower than a fibre's radius are the surface's texture, not crepe.
+// `min_amplitude` (folds lower than a fibre's radius are the surface's texture, not crepe)
+// and the band holds at least three folds of that amplitude (one buckle is not a train).
 #pragma once
 
 #include <vector>
@@ -46,12 +47,17 @@ CrepeProfile MeasureCrepeProfile(const std::vector<FramePoint>& points, double u
 struct CrepeBand {
   double cutoff = 800e-6;               // longest: the waviness filter's cutoff
   double shortest_wavelength = 128e-6;  // shortest: the texture filter's cutoff
-  double min_amplitude = 16e-6;         // a fold train's least amplitude at its peak
+  double min_amplitude = 16e-6;         // a fold's least amplitude (the peak, the count)
 };
+
+// Folds a profile needs to hold for a fold train.
+inline constexpr int kFoldsInATrain = 3;
 
 struct CrepeSpectrum {
   double frequency = 0.0;        // the fold train's folds per unit length; 0: none [1/m]
-  double peak_amplitude = 0.0;   // a sine's amplitude at that peak [m]
+  double peak_amplitude = 0.0;   // a sine's amplitude at the band's highest peak [m]
+  // Rises of the crepe band from below -min_amplitude to above +min_amplitude.
+  int fold_count = 0;
   double amplitude = 0.0;        // sqrt(2) x the RMS of the crepe band [m]
   std::vector<double> waviness;  // the profile's long shape [m]
   std::vector<double> folds;     // the crepe band: profile - waviness - texture [m]

@@ -593,6 +593,13 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
           "shortest wavelength counted ({:.0f} um; crepe_frequency 0); use a longer cell "
           "(cell.size_x_mm)",
           length * 1e6, band.shortest_wavelength * 1e6));
+    else if (spectrum.frequency == 0.0 && spectrum.peak_amplitude >= band.min_amplitude)
+      out.warnings.push_back(fmt::format(
+          "creping: no crepe fold train on the {:.2f} mm of creped sheet: its crepe band rises "
+          "from below -{:.1f} um to above +{:.1f} um only {} time(s), fewer than {} "
+          "(crepe_frequency 0)",
+          length * 1e3, band.min_amplitude * 1e6, band.min_amplitude * 1e6,
+          spectrum.fold_count, kFoldsInATrain));
     else if (spectrum.frequency == 0.0)
       out.warnings.push_back(fmt::format(
           "creping: no crepe folds on the {:.2f} mm of creped sheet: its profile has no peak "
