@@ -1,8 +1,8 @@
-"""Plots of the creping study (scripts/creping_study.sh): crepe frequency, bond loss, dust and
-bulk against adhesion strength for each creping angle; the bond-loss curve over time (paper
-Fig. 7) of the reference run (85 deg, 10 mN), and the crepe profile of the run whose creped
-sheet is the longest among those with a fold train (the longest of all if none has one):
-the height, its waviness and the crepe band.
+"""Plots of the creping study (scripts/creping_study.sh): crepe frequency and amplitude, bond
+loss, dust and bulk against adhesion strength for each creping angle; the bond-loss curve
+over time (paper Fig. 7) of the reference run (85 deg, 10 mN), and the crepe profile of the
+run whose creped sheet is the longest among those with a fold train (the longest of all if
+none has one): the height, its waviness and the crepe band.
 Usage: /usr/bin/python3 scripts/plot_creping_study.py OUT_DIR FIGURE_DIR"""
 import csv
 import json
@@ -28,11 +28,12 @@ def column(path, name):
         return [float(r[name]) for r in csv.DictReader(f)]
 
 
-panels = [("crepe_frequency_per_mm", "crepe frequency [1/mm]"),
+panels = [("crepe_frequency_per_mm", "crepe frequency [1/mm] (0: no fold train)"),
+          ("crepe_amplitude_um", "crepe band amplitude [um]"),
           ("bonds_broken_fraction", "fibre-fibre bonds broken"),
           ("dust_mass_fraction", "dust mass fraction"),
           ("bulk_gain", "bulk gain at rest (caliper after / before)")]
-fig, axes = plt.subplots(1, len(panels), figsize=(16, 3.6))
+fig, axes = plt.subplots(1, len(panels), figsize=(20, 3.6))
 rows = []
 for angle in angles:
     runs = [details(f"angle{angle}_adh{a}") for a in adhesions]
