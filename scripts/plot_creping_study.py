@@ -58,19 +58,23 @@ left.plot(t, column(curve, "adhesive_broken_fraction"), label="adhesive bonds (Y
 left.set_xlabel("time since the blade met the sheet [us]")
 left.set_ylabel("fraction broken")
 left.legend()
+
+
 def profile_of(name):
-    return os.path.join(out, name, "curves", "crepe_profile.csv")
+    with open(os.path.join(out, name, "curves", "crepe_profile.csv")) as f:
+        rows_ = list(csv.DictReader(f))
+    return {key: [float(r[key]) for r in rows_] for key in rows_[0]}
 
 
 names = [f"angle{angle}_adh{a}" for angle, a, _ in rows]
 folded = [n for n, (_, _, d) in zip(names, rows) if d["crepe_frequency_per_mm"] > 0]
-shown = max(folded or names, key=lambda n: len(column(profile_of(n), "u_um")))
-u = column(profile_of(shown), "u_um")
-right.plot(u, column(profile_of(shown), "height_um"), label="top surface")
-right.plot(u, column(profile_of(shown), "waviness_um"), label="waviness (the sheet's shape)")
-band = column(profile_of(shown), "folds_um")
-base = min(column(profile_of(shown), "waviness_um")) - 2 * max(abs(v) for v in band)
-right.plot(u, [base + v for v in band], label="crepe band (shifted down)")
+profiles = {n: profile_of(n) for n in names}
+shown = max(folded or names, key=lambda n: len(profiles[n]["u_um"]))
+p = profiles[shown]
+right.plot(p["u_um"], p["height_um"], label="top surface")
+right.plot(p["u_um"], p["waviness_um"], label="waviness (the sheet's shape)")
+base = min(p["waviness_um"]) - 2 * max(abs(v) for v in p["folds_um"])
+right.plot(p["u_um"], [base + v for v in p["folds_um"]], label="crepe band (shifted down)")
 d = details(shown)
 right.set_title(f"{shown.replace('angle', '').replace('_adh', ' deg, ')} mN: "
                 f"{d['crepe_frequency_per_mm']:.2f} folds/mm, {d['crepe_amplitude_um']:.0f} um",

@@ -90,7 +90,11 @@ CrepeProfile MeasureCrepeProfile(const std::vector<FramePoint>& points, double u
 CrepeSpectrum AnalyseCrepe(const std::vector<double>& height, double bin, const CrepeBand& band) {
   CrepeSpectrum s;
   const int n = static_cast<int>(height.size());
-  if (n < 8 || !(bin > 0.0)) return s;
+  if (n < 8 || !(bin > 0.0)) {  // too short to split: all waviness, no crepe band
+    s.waviness = height;
+    s.folds.assign(height.size(), 0.0);
+    return s;
+  }
   s.waviness = GaussianRegressionWaviness(height, bin, band.cutoff);
   // The texture filter's cutoff is half the shortest fold counted, so that folds from there up
   // pass nearly whole (97% at twice the cutoff).
@@ -105,12 +109,12 @@ CrepeSpectrum AnalyseCrepe(const std::vector<double>& height, double bin, const 
   for (int j = 0; j < n; ++j) rms += (s.folds[j] - mean) * (s.folds[j] - mean) / n;
   s.amplitude = std::sqrt(2.0 * rms);
   // Hann window; the amplitude of a sine is recovered by dividing by the window's mean, 1/2.
+  std::vector<double> windowed(n);
+  for (int j = 0; j < n; ++j)
+    windowed[j] = (0.5 - 0.5 * std::cos(2.0 * kPi * j / (n - 1))) * (s.folds[j] - mean);
   for (int k = 1; k <= n / 2; ++k) {
     std::complex<double> c = 0.0;
-    for (int j = 0; j < n; ++j) {
-      const double w = 0.5 - 0.5 * std::cos(2.0 * kPi * j / (n - 1));
-      c += w * (s.folds[j] - mean) * std::polar(1.0, -2.0 * kPi * k * j / n);
-    }
+    for (int j = 0; j < n; ++j) c += windowed[j] * std::polar(1.0, -2.0 * kPi * k * j / n);
     s.frequencies.push_back(k / (n * bin));
     s.amplitudes.push_back(2.0 * std::abs(c) / (0.5 * n));
   }

@@ -59,8 +59,9 @@ struct CrepeSpectrum {
   // Rises of the crepe band from below -min_amplitude to above +min_amplitude.
   int fold_count = 0;
   double amplitude = 0.0;        // sqrt(2) x the RMS of the crepe band [m]
-  std::vector<double> waviness;  // the profile's long shape [m]
-  std::vector<double> folds;     // the crepe band: profile - waviness - texture [m]
+  // The profile split, one entry per profile bin (a profile too short to split is all
+  // waviness): its long shape, and the crepe band (profile - waviness - texture) [m].
+  std::vector<double> waviness, folds;
   std::vector<double> frequencies, amplitudes;  // the crepe band's one-sided spectrum [1/m], [m]
 };
 

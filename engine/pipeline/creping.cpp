@@ -609,10 +609,8 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     out.crepe_profile.name = "crepe_profile";
     out.crepe_profile.columns = {"u_um", "height_um", "waviness_um", "folds_um"};
     for (std::size_t k = 0; k < profile.height.size(); ++k)
-      out.crepe_profile.Add(
-          {(profile.u0 + (k + 0.5) * u_bin) * 1e6, profile.height[k] * 1e6,
-           spectrum.waviness.empty() ? profile.height[k] * 1e6 : spectrum.waviness[k] * 1e6,
-           spectrum.folds.empty() ? 0.0 : spectrum.folds[k] * 1e6});
+      out.crepe_profile.Add({(profile.u0 + (k + 0.5) * u_bin) * 1e6, profile.height[k] * 1e6,
+                             spectrum.waviness[k] * 1e6, spectrum.folds[k] * 1e6});
   }
   if (out.particles_past_blade > 0)
     out.warnings.push_back(fmt::format("creping: {} particles got behind the blade face",
