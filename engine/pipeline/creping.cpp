@@ -587,6 +587,9 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     out.crepe_amplitude = spectrum.amplitude;
     out.caliper_at_blade = profile.caliper;
     const double length = profile.height.size() * u_bin;
+    out.crepe_profile_length = length;
+    out.crepe_min_amplitude = band.min_amplitude;
+    out.crepe_fold_count = spectrum.fold_count;
     if (spectrum.frequency == 0.0 && 0.5 * length < band.shortest_wavelength)
       out.warnings.push_back(fmt::format(
           "creping: no crepe read: the {:.0f} um of creped sheet cannot hold two folds of the "

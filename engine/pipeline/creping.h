@@ -127,6 +127,10 @@ struct CrepingResult {
   double adhesive_broken_fraction = 0.0;
   double crepe_frequency = 0.0;             // [1/m] of creped sheet; 0: no fold train
   double crepe_amplitude = 0.0;             // [m] sqrt(2) x the crepe band's RMS
+  // The crepe profile's length [m], the least fold amplitude counted [m] and the folds of
+  // that amplitude the crepe band holds (a train needs kFoldsInATrain).
+  double crepe_profile_length = 0.0, crepe_min_amplitude = 0.0;
+  int crepe_fold_count = 0;
   // Plate calipers [m]: of the sheet before creping and of the creped sheet at rest, both
   // in the sheet's frame (bulk_gain = after / before), and of the creped sheet in its own
   // frame as the blade leaves it (caliper_at_blade).

@@ -13,6 +13,7 @@
 
 #include "engine/core/blade.h"
 #include "engine/core/simulation.h"
+#include "engine/pipeline/crepe_profile.h"
 #include "engine/pipeline/metrics.h"
 #include "engine/pipeline/pipeline.h"
 #include "engine/pipeline/reel.h"
@@ -116,9 +117,14 @@ TEST(Creping, StableAtOnceAndTwiceTheYankeeSpeedWithTheImpactEnergyAccounted) {
   // crepe_profile_test.cpp).
   EXPECT_FALSE(r.crepe_profile.rows.empty());
   EXPECT_GT(r.crepe_amplitude, 0.0);
+  // The profile's rows are its bins; the least fold amplitude defaults to the mean radius.
+  EXPECT_NEAR(r.crepe_profile_length, r.crepe_profile.rows.size() * MetricsSettings{}.profile_bin,
+              1e-12);
+  const std::vector<double>& radius = Pressed().network.world.particles.radius;
+  const double mean_radius = std::accumulate(radius.begin(), radius.end(), 0.0) / radius.size();
+  EXPECT_NEAR(r.crepe_min_amplitude, mean_radius, 0.25 * mean_radius);
   if (r.crepe_frequency > 0.0) {
-    const std::vector<double>& radius = Pressed().network.world.particles.radius;
-    const double mean_radius = std::accumulate(radius.begin(), radius.end(), 0.0) / radius.size();
+    EXPECT_GE(r.crepe_fold_count, kFoldsInATrain);
     EXPECT_GE(r.crepe_frequency, 1.0 / Settings().crepe_cutoff);
     // The band's shortest fold is 4 mean diameters of the drawn part: allow for its mean.
     EXPECT_LE(r.crepe_frequency, 1.25 / (8.0 * mean_radius));
