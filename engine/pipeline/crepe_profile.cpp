@@ -139,4 +139,12 @@ CrepeSpectrum AnalyseCrepe(const std::vector<double>& height, double bin, const 
   return s;
 }
 
+double ContourRatio(const std::vector<double>& height, double bin) {
+  if (height.size() < 2) return 1.0;
+  double length = 0.0;
+  for (std::size_t k = 1; k < height.size(); ++k)
+    length += std::hypot(bin, height[k] - height[k - 1]);
+  return length / (static_cast<double>(height.size() - 1) * bin);
+}
+
 }  // namespace fibrenet::pipeline

@@ -70,4 +70,8 @@ struct CrepeSpectrum {
 // profile (two folds at least), and refined by a parabola through it and its neighbours.
 CrepeSpectrum AnalyseCrepe(const std::vector<double>& height, double bin, const CrepeBand& band);
 
+// The length of the profile's line over its projected length, (size - 1) x bin: 1 for a flat
+// profile (or one of fewer than two points), sqrt(1 + s^2) for a slope s.
+double ContourRatio(const std::vector<double>& height, double bin);
+
 }  // namespace fibrenet::pipeline

@@ -590,6 +590,18 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     out.crepe_profile_length = length;
     out.crepe_min_amplitude = band.min_amplitude;
     out.crepe_fold_count = spectrum.fold_count;
+    double window_mass = 0.0;
+    for (std::size_t k = 0; k < drawn.size(); ++k) {
+      const double u = pts[k].x.x();
+      if (u >= profile.u0 && u < profile.u0 + length) window_mass += p.mass[drawn[k]];
+    }
+    std::vector<double> shape = spectrum.waviness;
+    for (std::size_t k = 0; k < shape.size(); ++k) shape[k] += spectrum.folds[k];
+    out.crepe_gathered_ratio = window_mass / (length * Ly) / (sheet_mass / strip_area);
+    out.crepe_curl_ratio = ContourRatio(spectrum.waviness, u_bin);
+    out.crepe_fold_ratio = ContourRatio(shape, u_bin) / out.crepe_curl_ratio;
+    out.crepe_in_plane_ratio =
+        out.crepe_gathered_ratio / (out.crepe_curl_ratio * out.crepe_fold_ratio);
     if (spectrum.frequency == 0.0 && 0.5 * length < band.shortest_wavelength)
       out.warnings.push_back(fmt::format(
           "creping: no crepe read: the {:.0f} um of creped sheet cannot hold two folds of the "

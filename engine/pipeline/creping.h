@@ -131,6 +131,14 @@ struct CrepingResult {
   // that amplitude the crepe band holds (a train needs kFoldsInATrain).
   double crepe_profile_length = 0.0, crepe_min_amplitude = 0.0;
   int crepe_fold_count = 0;
+  // Where the Yankee length went, read over the crepe profile: the sheet's mass per unit of
+  // its projected length over that on the Yankee (the Yankee length gathered into a unit of
+  // creped sheet; 1 + crepe_ratio for a sheet the reel takes up at its own speed), split into
+  // the contour of the sheet's long shape (waviness) over its projection, the contour of the
+  // folds on it (waviness + crepe band over waviness) and what is left, the sheet's own
+  // shortening in its plane: gathered = curl x fold x in_plane.
+  double crepe_gathered_ratio = 0.0, crepe_curl_ratio = 0.0, crepe_fold_ratio = 0.0,
+         crepe_in_plane_ratio = 0.0;
   // Plate calipers [m]: of the sheet before creping and of the creped sheet at rest, both
   // in the sheet's frame (bulk_gain = after / before), and of the creped sheet in its own
   // frame as the blade leaves it (caliper_at_blade).

@@ -140,6 +140,25 @@ TEST(CrepeProfile, CoversOnlyTheStretchTheSheetReaches) {
     EXPECT_NEAR(p.height[k], 0.1 * (105e-6 + k * 10e-6) + 16e-6, 1e-12) << k;
 }
 
+TEST(CrepeProfile, ContourOfASlopeAndOfFoldsAgainstTheirArcLength) {
+  const double bin = 1e-6;
+  std::vector<double> slope;
+  for (int j = 0; j < 500; ++j) slope.push_back(0.3 * j * bin);
+  EXPECT_NEAR(ContourRatio(slope, bin), std::sqrt(1.09), 1e-12);
+  EXPECT_EQ(ContourRatio({}, bin), 1.0);
+  // Folds 40 um high, 400 um apart, over five whole wavelengths: the arc length of
+  // A sin(2 pi u / L) per wavelength is (2 / pi) sqrt(1 + k^2) E(k / sqrt(1 + k^2)) L, with
+  // k = 2 pi A / L and E the complete elliptic integral of the second kind (modulus form).
+  const double amplitude = 40e-6, wavelength = 400e-6;
+  std::vector<double> folds = Sine(2001, bin, wavelength);
+  for (double& h : folds) h *= amplitude;
+  const double k = 2.0 * kPi * amplitude / wavelength;
+  const double arc =
+      2.0 / kPi * std::sqrt(1.0 + k * k) * std::comp_ellint_2(k / std::sqrt(1.0 + k * k));
+  EXPECT_NEAR(ContourRatio(folds, bin), arc, 1e-5);
+  EXPECT_GT(arc, 1.09);  // the folds take up 9% more sheet than their projection
+}
+
 TEST(CrepeProfile, CaliperOfAFlatLayerIsItsThickness) {
   std::vector<FramePoint> pts;
   for (int i = 0; i < 40; ++i)

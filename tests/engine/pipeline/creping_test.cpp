@@ -123,6 +123,13 @@ TEST(Creping, StableAtOnceAndTwiceTheYankeeSpeedWithTheImpactEnergyAccounted) {
   const std::vector<double>& radius = Pressed().network.world.particles.radius;
   const double mean_radius = std::accumulate(radius.begin(), radius.end(), 0.0) / radius.size();
   EXPECT_NEAR(r.crepe_min_amplitude, mean_radius, 0.25 * mean_radius);
+  // Where the Yankee length went: contours are never shorter than their projections, and the
+  // sheet in the window weighs about what the Yankee length it came from did (no more than
+  // the crepe ratio's take-up and the folds could gather, no less than half).
+  EXPECT_GE(r.crepe_curl_ratio, 1.0);
+  EXPECT_GE(r.crepe_fold_ratio, 1.0);
+  EXPECT_GT(r.crepe_gathered_ratio, 0.5);
+  EXPECT_LT(r.crepe_gathered_ratio, 2.0);
   if (r.crepe_frequency > 0.0) {
     EXPECT_GE(r.crepe_fold_count, kFoldsInATrain);
     EXPECT_GE(r.crepe_frequency, 1.0 / Settings().crepe_cutoff);
@@ -143,9 +150,11 @@ TEST(Creping, StableAtOnceAndTwiceTheYankeeSpeedWithTheImpactEnergyAccounted) {
   EXPECT_NEAR(r.caliper_after / thickness, 1.0, 0.05);
   std::printf(
       "bulk gain %.3f: caliper %.1f um at rest (thickness %.1f um), %.1f um at the "
-      "blade, %.1f um before; crepe %.2f folds/mm, %.1f um\n",
+      "blade, %.1f um before; crepe %.2f folds/mm, %.1f um; Yankee length gathered %.3f = "
+      "curl %.3f x folds %.3f x in plane %.3f\n",
       r.bulk_gain, r.caliper_after * 1e6, thickness * 1e6, r.caliper_at_blade * 1e6,
-      r.caliper_before * 1e6, r.crepe_frequency * 1e-3, r.crepe_amplitude * 1e6);
+      r.caliper_before * 1e6, r.crepe_frequency * 1e-3, r.crepe_amplitude * 1e6,
+      r.crepe_gathered_ratio, r.crepe_curl_ratio, r.crepe_fold_ratio, r.crepe_in_plane_ratio);
   // The bond-loss curve starts intact and never heals.
   const std::vector<double> ff = r.bond_loss.Values("fibre_fibre_broken_fraction");
   ASSERT_GE(ff.size(), 10u);
