@@ -11,26 +11,16 @@
 set -euo pipefail
 source "$(dirname "$0")/study_start.sh" campaigns/scenes/generic-tissue-creped.toml "$@"
 
-# run NAME ARGS...: one fibrenet run into NAME/, its JSON in NAME.json, unless already there.
-run() {
-  local name=$1; shift
-  [[ -s "$name.json" ]] && return 0
-  "$fibrenet" run "$@" --out "$name" --json > "$name.json.part" 2> "$name.err"
-  mv "$name.json.part" "$name.json"
-}
-# Keeps at most two runs going (wait -n also returns for a job that has already ended).
-throttle() { while (( $(jobs -rp | wc -l) >= 2 )); do wait -n; done; }
-
-run form "$scene" --until forming --threads 2
+run_kept form "$scene" --until forming --threads 2
 press=(--from form/snapshots/forming.h5 --until pressing --threads 1
        --set pressing.target_thickness_um=89)
-run p89 "$scene" "${press[@]}" &
-run p89s "$scene" "${press[@]}" --set pressing.bonding.F_s0_mN=25 &
+run_kept p89 "$scene" "${press[@]}" &
+run_kept p89s "$scene" "${press[@]}" --set pressing.bonding.F_s0_mN=25 &
 wait_all
 
 write_tensile_scene
 for web in p89 p89s; do
-  run "t_$web" tensile.toml --from "$web/snapshots/pressing.h5" --threads 1 &
+  run_kept "t_$web" tensile.toml --from "$web/snapshots/pressing.h5" --threads 1 &
 done
 wait_all
 
@@ -42,7 +32,7 @@ for run_in in 0 500; do
     shear=$(awk "BEGIN { print 0.3 * $modulus }")
     name="${web}_e${modulus}"
     if (( run_in > 0 )); then name+="_r${run_in}"; fi
-    run "$name" "$scene" --from "$web/snapshots/pressing.h5" --until creping --threads 1 \
+    run_kept "$name" "$scene" --from "$web/snapshots/pressing.h5" --until creping --threads 1 \
       --set creping.adhesion.modulus_MPa="$modulus" \
       --set creping.adhesion.shear_modulus_MPa="$shear" --set creping.run_in_length_um="$run_in" &
     throttle

@@ -4,8 +4,6 @@ over time (paper Fig. 7) of the reference run (85 deg, 10 mN), and the crepe pro
 run whose creped sheet is the longest among those with a fold train (the longest of all if
 none has one): the height, its waviness and the crepe band.
 Usage: /usr/bin/python3 scripts/plot_creping_study.py OUT_DIR FIGURE_DIR"""
-import csv
-import json
 import os
 import sys
 
@@ -13,19 +11,14 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+from creping_runs import curve, details as details_in
+
 out, figures = sys.argv[1], sys.argv[2]
 angles, adhesions = [75, 85, 95], [3, 10, 30]
 
 
 def details(name):
-    with open(os.path.join(out, name + ".json")) as f:
-        run = json.load(f)
-    return next(s for s in run["stages"] if s["name"] == "creping")["details"]
-
-
-def column(path, name):
-    with open(path) as f:
-        return [float(r[name]) for r in csv.DictReader(f)]
+    return details_in(out, name)
 
 
 panels = [("crepe_frequency_per_mm", "crepe frequency [1/mm] (0: no fold train)"),
@@ -48,27 +41,19 @@ axes[0].legend(title="creping angle")
 fig.tight_layout()
 fig.savefig(os.path.join(figures, "creping_study.png"), dpi=110)
 
-reference = os.path.join(out, "angle85_adh10")
 fig, (left, right) = plt.subplots(1, 2, figsize=(12, 3.6))
-curve = os.path.join(reference, "curves", "creping_bond_loss.csv")
-t = column(curve, "time_us")
-t = [x - t[0] for x in t]  # from the first sample (older runs counted from the forming start)
-left.plot(t, column(curve, "fibre_fibre_broken_fraction"), label="fibre-fibre bonds")
-left.plot(t, column(curve, "adhesive_broken_fraction"), label="adhesive bonds (Yankee)")
+loss = curve(out, "angle85_adh10", "creping_bond_loss")
+# From the first sample (older runs counted from the forming start).
+t = [x - loss["time_us"][0] for x in loss["time_us"]]
+left.plot(t, loss["fibre_fibre_broken_fraction"], label="fibre-fibre bonds")
+left.plot(t, loss["adhesive_broken_fraction"], label="adhesive bonds (Yankee)")
 left.set_xlabel("time since the blade met the sheet [us]")
 left.set_ylabel("fraction broken")
 left.legend()
 
-
-def profile_of(name):
-    with open(os.path.join(out, name, "curves", "crepe_profile.csv")) as f:
-        rows_ = list(csv.DictReader(f))
-    return {key: [float(r[key]) for r in rows_] for key in rows_[0]}
-
-
 names = [f"angle{angle}_adh{a}" for angle, a, _ in rows]
 folded = [n for n, (_, _, d) in zip(names, rows) if d["crepe_frequency_per_mm"] > 0]
-profiles = {n: profile_of(n) for n in names}
+profiles = {n: curve(out, n, "crepe_profile") for n in names}
 shown = max(folded or names, key=lambda n: len(profiles[n]["u_um"]))
 p = profiles[shown]
 right.plot(p["u_um"], p["height_um"], label="top surface")
