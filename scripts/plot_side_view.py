@@ -1,11 +1,16 @@
 #!/usr/bin/env python3
 """Side views (MD against thickness, true scale) of stage snapshots.
 
-    /usr/bin/python3 scripts/plot_side_view.py OUT.png SNAPSHOT.h5[=TITLE] ...
+    /usr/bin/python3 scripts/plot_side_view.py [--speed VMAX] OUT.png SNAPSHOT.h5[=TITLE] ...
 
 Each snapshot (DIR/snapshots/STAGE.h5 of `fibrenet run --out DIR`) gets one panel: every
 particle's centre in the x-z plane, the cell's y folded onto it, so that folds, loops and a
 sheet's tilt show as they lie.
+
+With --speed the particles are coloured by their speed (0 to VMAX m/s, as paper Fig. 6 colours
+the creping impact) and every panel keeps the snapshot's own x, so that the impact frames of
+one run (DIR/snapshots/creping_frame_NNN.h5) line up along the Yankee; without it each panel
+starts at its sheet's first particle.
 """
 import sys
 
@@ -17,24 +22,48 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def main(argv):
-    if len(argv) < 3:
-        sys.exit(__doc__)
-    out, specs = argv[1], argv[2:]
+def read_panels(specs):
     panels = []
     for spec in specs:
         path, _, title = spec.partition("=")
         with h5py.File(path, "r") as f:
             x = f["particles/x"][:] * 1e6
-        panels.append((title or path, x))
-    width = max(np.ptp(p[1][:, 0]) for p in panels)
-    heights = [max(np.ptp(x[:, 2]), 0.05 * width) + 40.0 for _, x in panels]
+            speed = np.linalg.norm(f["particles/v"][:], axis=1)
+        panels.append((title or path, x, speed))
+    return panels
+
+
+def main(argv):
+    args = argv[1:]
+    speed_max = None
+    if args[:1] == ["--speed"]:
+        if len(args) < 2:
+            sys.exit(__doc__)
+        try:
+            speed_max = float(args[1])
+        except ValueError:
+            sys.exit(f"error: --speed: '{args[1]}' is not a number of m/s")
+        args = args[2:]
+    if len(args) < 2:
+        sys.exit(__doc__)
+    out, panels = args[0], read_panels(args[1:])
+    if speed_max is None:
+        panels = [(t, x - [x[:, 0].min(), 0.0, 0.0], s) for t, x, s in panels]
+    left = min(x[:, 0].min() for _, x, _ in panels)
+    right = max(x[:, 0].max() for _, x, _ in panels)
+    width = right - left
+    heights = [max(np.ptp(x[:, 2]), 0.05 * width) + 40.0 for _, x, _ in panels]
     fig, axes = plt.subplots(len(panels), 1, squeeze=False,
                              figsize=(12, 1.0 + 12 * sum(heights) / width),
                              gridspec_kw={"height_ratios": heights})
-    for ax, (title, x) in zip(axes[:, 0], panels):
-        ax.scatter(x[:, 0] - x[:, 0].min(), x[:, 2], s=0.2, color="tab:blue")
-        ax.set_xlim(0, width)
+    for ax, (title, x, speed) in zip(axes[:, 0], panels):
+        if speed_max is None:
+            ax.scatter(x[:, 0], x[:, 2], s=0.2, color="tab:blue")
+        else:
+            dots = ax.scatter(x[:, 0], x[:, 2], s=0.2, c=speed, cmap="viridis", vmin=0.0,
+                              vmax=speed_max)
+            fig.colorbar(dots, ax=ax, label="speed [m/s]", pad=0.01, fraction=0.02)
+        ax.set_xlim(left, right)
         ax.set_aspect("equal")
         ax.set_title(title, fontsize=9)
         ax.set_ylabel("z [um]")
