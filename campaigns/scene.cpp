@@ -308,6 +308,7 @@ pipeline::CrepingSettings ReadCreping(TableReader& r, ReadContext& ctx) {
     ad.coating_thickness = ar.Number("coating_thickness_um", 5, OpenClosed(0, 1000), "um") * 1e-6;
     ad.bond_radius_fraction = ar.Number("bond_radius_fraction", 0.5, OpenClosed(0, 1), "");
     ad.reach = ar.Number("reach_radii", 0.5, Closed(0, 1), "particle radii");
+    ad.damping_ratio = ar.Number("damping_ratio", 0, Closed(0, 1), "of critical");
     ar.Finish();
   }
   r.Finish();

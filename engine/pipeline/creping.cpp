@@ -218,22 +218,6 @@ double SheetCaliper(const World& w, double x0, double x1, const MetricsSettings&
 
 }  // namespace
 
-std::string AdhesionSettings::Validate() const {
-  if (!(F_r0 > 0.0 && std::isfinite(F_r0))) return fmt::format("F_r0 = {} N: must be finite and > 0", F_r0);
-  if (!(F_s0 > 0.0 && std::isfinite(F_s0))) return fmt::format("F_s0 = {} N: must be finite and > 0", F_s0);
-  if (!(strength_cv >= 0.0 && strength_cv <= 2.0))
-    return fmt::format("strength_cv = {}: must lie in [0, 2]", strength_cv);
-  if (!(modulus > 0.0 && modulus <= 1e12)) return fmt::format("modulus = {} Pa: must lie in (0, 1e12]", modulus);
-  if (!(shear_modulus > 0.0 && shear_modulus <= 1e12))
-    return fmt::format("shear_modulus = {} Pa: must lie in (0, 1e12]", shear_modulus);
-  if (!(bond_radius_fraction > 0.0 && bond_radius_fraction <= 1.0))
-    return fmt::format("bond_radius_fraction = {}: must lie in (0, 1]", bond_radius_fraction);
-  if (!(reach >= 0.0 && reach <= 1.0)) return fmt::format("reach = {}: must lie in [0, 1]", reach);
-  if (!(coating_thickness > 0.0 && coating_thickness <= 1e-3))
-    return fmt::format("coating_thickness = {} m: must lie in (0, 1e-3]", coating_thickness);
-  return {};
-}
-
 std::string CrepingSettings::Validate() const {
   if (!(yankee_speed > 0.0 && yankee_speed <= 200.0))
     return fmt::format("yankee_speed = {} m/s: must lie in (0, 200]", yankee_speed);
@@ -355,20 +339,9 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     const int c = pick(rng);
     auto it = types.find({R, c});
     if (it == types.end()) {
-      // A thin glue layer of thickness t over a patch of radius r_b: k_n = E A / t,
-      // k_s = G A / t, k_b = E I / t, k_t = G J / t.
-      const double r_b = a.bond_radius_fraction * R, area = kPi * r_b * r_b;
-      const double I = 0.25 * kPi * r_b * r_b * r_b * r_b, t = a.coating_thickness;
-      BeamBondParams params;
-      params.k_n = a.modulus * area / t;
-      params.k_s = a.shear_modulus * area / t;
-      params.k_b = a.modulus * I / t;
-      params.k_t = a.shear_modulus * 2.0 * I / t;
-      params.failure = BondFailure::kHill;
-      params.F_r0 = a.F_r0 * classes[c];
-      params.F_s0 = a.F_s0 * classes[c];
-      params.HillDefaults();
-      it = types.emplace(std::make_pair(R, c), w.bonds.AddType(params)).first;
+      // Particles of one radius share a type (the sheet's fibres are of one density).
+      const BeamBondParams glue = GlueBond(a, R, p.mass[i], p.inertia[i], classes[c]);
+      it = types.emplace(std::make_pair(R, c), w.bonds.AddType(glue)).first;
     }
     const std::size_t anchor =
         p.Add(Vec3(p.x[i].x(), p.x[i].y(), -z), R, p.mass[i], -1, sheet.inertia_scale);

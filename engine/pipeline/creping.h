@@ -10,11 +10,10 @@
 // ends cut) and stays periodic across (CD). Real inertia: no mass scaling; bond failure on.
 //
 // Adhesion. Every particle whose bottom lies within adhesion.reach radii of the surface is
-// held by an adhesive beam bond (BondKind::kAdhesive) to a fixed anchor, its mirror image
-// below the surface. The bond has the stiffness of a glue layer (moduli E_c, G_c, thickness
-// t_c) over a patch of radius bond_radius_fraction R, and fails by the Hill criterion of the fibre-fibre
-// bonds with the coating's peel and shear strengths, which may scatter (lognormal,
-// strength_cv, sampled in 16 equiprobable classes).
+// held by an adhesive beam bond (BondKind::kAdhesive, glue.h) to a fixed anchor, its mirror
+// image below the surface: the stiffness of a glue layer, failure by the Hill criterion with
+// the coating's peel and shear strengths, which may scatter (lognormal, strength_cv, sampled
+// in 16 equiprobable classes), and optionally the coating's damping.
 //
 // The reel. The creped sheet is drawn away along the blade face at the reel speed
 // yankee_speed / (1 + crepe_ratio): particles the blade has passed (their place on the
@@ -38,25 +37,12 @@
 
 #include "engine/pipeline/curves.h"
 #include "engine/pipeline/forming.h"
+#include "engine/pipeline/glue.h"
 #include "engine/pipeline/metrics.h"
 #include "engine/pipeline/network.h"
 #include "engine/pipeline/progress.h"
 
 namespace fibrenet::pipeline {
-
-struct AdhesionSettings {
-  // Calibrated on the generic tissue against the paper's bond loss (docs/creping.md).
-  double F_r0 = 7e-3;                // peel (tensile) strength of one adhesive bond [N]
-  double F_s0 = 7e-3;                // shear strength [N]
-  double strength_cv = 0.0;          // scatter of both strengths (lognormal), [0, 2]
-  double modulus = 1e8;              // coating's Young's modulus E_c [Pa]
-  double shear_modulus = 3e7;        // coating's shear modulus [Pa]
-  double coating_thickness = 5e-6;   // t_c [m]
-  double bond_radius_fraction = 0.5; // glued patch radius / particle radius, (0, 1]
-  double reach = 0.5;                // glue particles whose bottom is this many radii up, [0, 1]
-
-  std::string Validate() const;
-};
 
 struct CrepingSettings {
   double yankee_speed = 30.0;        // [m/s]

@@ -276,6 +276,7 @@ TEST(SceneFile, AnEmptyCrepingTableGivesTheEngineDefaults) {
   EXPECT_DOUBLE_EQ(a.coating_thickness, ad.coating_thickness);
   EXPECT_DOUBLE_EQ(a.bond_radius_fraction, ad.bond_radius_fraction);
   EXPECT_DOUBLE_EQ(a.reach, ad.reach);
+  EXPECT_DOUBLE_EQ(a.damping_ratio, ad.damping_ratio);
 }
 
 TEST(SceneFile, MissingFileAndSyntaxErrorsNameTheFile) {
