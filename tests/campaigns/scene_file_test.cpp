@@ -178,6 +178,18 @@ TEST(SceneFile, OutOfRangeNamesTheAcceptedRange) {
   });
   EXPECT_NE(neg.find("fibres.diameter_um"), std::string::npos) << neg;
   EXPECT_NE(neg.find("(0, 1000] um"), std::string::npos) << neg;
+  // The coating's damping: a fraction of critical, within [0, 1].
+  const std::string damping = InputErrorOf([] {
+    ParseScene(std::string(kMinimal) + "[creping]\n[creping.adhesion]\ndamping_ratio = 1.5\n",
+               "d.toml");
+  });
+  EXPECT_NE(damping.find("d.toml: creping.adhesion.damping_ratio"), std::string::npos) << damping;
+  EXPECT_NE(damping.find("[0, 1]"), std::string::npos) << damping;
+  EXPECT_DOUBLE_EQ(
+      ParseScene(std::string(kMinimal) + "[creping]\n[creping.adhesion]\ndamping_ratio = 0.5\n",
+                 "d.toml")
+          .creping->adhesion.damping_ratio,
+      0.5);
 }
 
 TEST(SceneFile, NonPhysicalCombinationsAreRejected) {
