@@ -326,7 +326,16 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   const std::vector<double> classes = StrengthClasses(a.strength_cv);
   std::mt19937_64 rng(seed ^ 0x6372657065ULL);
   std::uniform_int_distribution<int> pick(0, static_cast<int>(classes.size()) - 1);
-  std::map<std::pair<double, int>, std::int32_t> types;
+  struct GlueType {
+    std::int32_t id;
+    double mass, inertia;  // of the particle its dashpots are sized for
+  };
+  std::map<std::pair<double, int>, GlueType> types;
+  // With the coating's damping each glue bond carries its own particle's factors; the
+  // factors this stage adds go with its anchors.
+  const bool damped_glue = a.damping_ratio > 0.0;
+  const bool added_factors = damped_glue && w.bonds.damping_factors.empty();
+  if (damped_glue) w.bonds.damping_factors.resize(w.bonds.size());
   double r_max = 0.0, x_front = -1e300;
   const double sheet_mass = net.TotalMass();  // before the anchors join the particles
   std::vector<GlueSite> glue_sites;
@@ -339,18 +348,21 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
     const int c = pick(rng);
     auto it = types.find({R, c});
     if (it == types.end()) {
-      // Particles of one radius share a type (the sheet's fibres are of one density).
       const BeamBondParams glue = GlueBond(a, R, p.mass[i], p.inertia[i], classes[c]);
-      it = types.emplace(std::make_pair(R, c), w.bonds.AddType(glue)).first;
+      const GlueType type{w.bonds.AddType(glue), p.mass[i], p.inertia[i]};
+      it = types.emplace(std::make_pair(R, c), type).first;
     }
     const std::size_t anchor =
         p.Add(Vec3(p.x[i].x(), p.x[i].y(), -z), R, p.mass[i], -1, sheet.inertia_scale);
     p.Fix(anchor);
     const std::size_t bond =
-        w.bonds.Add(static_cast<std::int32_t>(i), static_cast<std::int32_t>(anchor), it->second,
+        w.bonds.Add(static_cast<std::int32_t>(i), static_cast<std::int32_t>(anchor), it->second.id,
                     BondKind::kAdhesive, MakeBondState(p.x[anchor] - p.x[i], p.q[i], p.q[anchor]));
+    if (damped_glue)
+      w.bonds.damping_factors[bond] =
+          GlueDampingFactors(p.mass[i], p.inertia[i], it->second.mass, it->second.inertia);
     glue_sites.push_back({p.x[i].x(), bond});
-    const BeamBondParams& glue = w.bonds.types[it->second];
+    const BeamBondParams& glue = w.bonds.types[it->second.id];
     glue_energy += glue.F_r0 * glue.F_r0 / (2.0 * glue.k_n);
     ++out.adhesive_bonds;
   }
@@ -606,6 +618,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
 
   // Lay the creped sheet flat: (u, y, h) -> (x, y, z), its base on z = 0, at rest.
   DropAnchors(w, n_sheet, n_bonds, n_types);
+  if (added_factors) w.bonds.damping_factors.clear();
   w.blades.clear();
   w.applied_force.clear();
   w.applied_torque.clear();

@@ -51,4 +51,8 @@ BeamBondParams GlueBond(const AdhesionSettings& a, double R, double m, double I,
   return params;
 }
 
+BondDampingFactors GlueDampingFactors(double m, double I, double m_type, double I_type) {
+  return {static_cast<float>(std::sqrt(m / m_type)), static_cast<float>(std::sqrt(I / I_type))};
+}
+
 }  // namespace fibrenet::pipeline

@@ -8,9 +8,10 @@
 // The coating is a polymer film (polyvinyl alcohol, polyamide-epichlorohydrin resins) whose
 // loss factor near its softening point is of order one: a purely elastic glue lets a struck
 // strip ring on it undamped. damping_ratio adds dashpots to the glue's modes, each at that
-// fraction of critical for the glued particle on its glue (the anchor does not move): a
-// particle pulled off its glue site and let go rings down with the logarithmic decrement
-// 2 pi zeta / sqrt(1 - zeta^2) per period.
+// fraction of critical for the glued particle on its glue (the anchor does not move; each
+// bond's factors fit it to its own particle, GlueDampingFactors): a particle pulled off its
+// glue site and let go rings down with the logarithmic decrement 2 pi zeta / sqrt(1 - zeta^2)
+// per period.
 #pragma once
 
 #include <string>
@@ -38,5 +39,11 @@ struct AdhesionSettings {
 // scaled by `strength_factor` (a class of the coating's scatter).
 BeamBondParams GlueBond(const AdhesionSettings& a, double R, double m, double I,
                         double strength_factor);
+
+// Particles of one radius share a glue type, its dashpots sized for one particle of mass
+// m_type and inertia I_type; fibres differ in coarseness and segment length, so the particles
+// do not share a mass. These factors on the type's dashpots (Bonds::damping_factors) put a
+// glued particle of mass m and inertia I at the type's fraction of critical.
+BondDampingFactors GlueDampingFactors(double m, double I, double m_type, double I_type);
 
 }  // namespace fibrenet::pipeline

@@ -24,23 +24,27 @@ struct Ringing {
 };
 
 // The glued particle (at height R, its anchor at -R) set moving up at kSpeed, followed over
-// `periods` undamped periods at 400 steps a period.
-Ringing Ring(double zeta, int periods) {
+// `periods` undamped periods at 400 steps a period. Its glue type is sized for a particle of
+// kRadius and kDensity; the particle itself is `heavier` times that mass, its bond's factors
+// fitting the dashpots to it.
+Ringing Ring(double zeta, int periods, double heavier = 1.0) {
   World w;
   w.cell.lo = Vec3(-1e-3, -1e-3, -1e-3);
   w.cell.hi = Vec3(1e-3, 1e-3, 1e-3);
   w.cell.periodic_x = w.cell.periodic_y = false;
   Particles& p = w.particles;
-  const double mass = kDensity * 4.0 / 3.0 * kPi * std::pow(kRadius, 3);
+  const double type_mass = kDensity * 4.0 / 3.0 * kPi * std::pow(kRadius, 3);
+  const double type_inertia = 0.4 * type_mass * kRadius * kRadius, mass = heavier * type_mass;
   const std::size_t sheet = p.Add(Vec3(0.0, 0.0, kRadius), kRadius, mass, 0);
   const std::size_t anchor = p.Add(Vec3(0.0, 0.0, -kRadius), kRadius, mass, -1);
   p.Fix(anchor);
   AdhesionSettings a;
   a.damping_ratio = zeta;
   a.F_r0 = a.F_s0 = 1.0;  // far above what the swing loads it with: the glue holds
-  const BeamBondParams glue = GlueBond(a, kRadius, mass, p.inertia[sheet], 1.0);
+  const BeamBondParams glue = GlueBond(a, kRadius, type_mass, type_inertia, 1.0);
   w.bonds.Add(0, 1, w.bonds.AddType(glue), BondKind::kAdhesive,
               MakeBondState(p.x[anchor] - p.x[sheet], p.q[sheet], p.q[anchor]));
+  w.bonds.damping_factors = {GlueDampingFactors(mass, p.inertia[sheet], type_mass, type_inertia)};
   p.v[sheet] = Vec3(0.0, 0.0, kSpeed);
   const double omega = std::sqrt(glue.k_n / mass), period = 2.0 * kPi / omega;
   w.settings.dt = period / 400.0;
@@ -83,6 +87,18 @@ TEST(Glue, AGluedParticleRingsDownAsADampedOscillator) {
     EXPECT_GT(r.dissipated, 0.5 * start_kinetic) << "zeta " << zeta;
     EXPECT_NEAR(r.accounted_end, r.accounted_start, 0.01 * start_kinetic) << "zeta " << zeta;
   }
+}
+
+// Particles of one radius share a glue type but not a mass: the bond's factors keep a particle
+// twice as heavy as the one the type was sized for at the same fraction of critical (without
+// them it would ring at zeta / sqrt(2)).
+TEST(Glue, AHeavierParticleOnTheSameGlueTypeRingsDownAtTheSameRatio) {
+  const double zeta = 0.2;
+  const Ringing r = Ring(zeta, 6, 2.0);
+  ASSERT_GE(r.peaks.size(), 4u);
+  const double root = std::sqrt(1.0 - zeta * zeta);
+  const double decrement = std::log(r.peaks[1] / r.peaks[3]) / 2.0;
+  EXPECT_NEAR(decrement, 2.0 * kPi * zeta / root, 0.01 * 2.0 * kPi * zeta / root);
 }
 
 TEST(Glue, WithoutDampingTheSwingKeepsItsSize) {
