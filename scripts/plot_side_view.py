@@ -22,13 +22,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def read_panels(specs):
+def read_panels(specs, with_speed):
     panels = []
     for spec in specs:
         path, _, title = spec.partition("=")
         with h5py.File(path, "r") as f:
             x = f["particles/x"][:] * 1e6
-            speed = np.linalg.norm(f["particles/v"][:], axis=1)
+            speed = np.linalg.norm(f["particles/v"][:], axis=1) if with_speed else None
         panels.append((title or path, x, speed))
     return panels
 
@@ -46,7 +46,7 @@ def main(argv):
         args = args[2:]
     if len(args) < 2:
         sys.exit(__doc__)
-    out, panels = args[0], read_panels(args[1:])
+    out, panels = args[0], read_panels(args[1:], speed_max is not None)
     if speed_max is None:
         panels = [(t, x - [x[:, 0].min(), 0.0, 0.0], s) for t, x, s in panels]
     left = min(x[:, 0].min() for _, x, _ in panels)
