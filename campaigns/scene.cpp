@@ -281,6 +281,8 @@ pipeline::CrepingSettings ReadCreping(TableReader& r, ReadContext& ctx) {
   c.run_in_length = r.Number("run_in_length_um", 0, Closed(0, 1e5), "um (0 = off)") * 1e-6;
   c.blade_hard_stiffness = r.Number("blade_hard_stiffness_N_per_m", 1.2e5, Closed(0, 1e9), "N/m");
   c.fibre_hard_stiffness = r.Number("fibre_hard_stiffness_N_per_m", 1.5e4, Closed(0, 1e9), "N/m");
+  if (r.Has("blade_friction_mu"))
+    c.blade_friction_mu = r.Number("blade_friction_mu", 0.3, Closed(0, 10), "");
   c.relax_mass_scale = r.Number("relax_mass_scale", 1000, Closed(1, 1e8), "");
   c.relax_damping_time = r.Number("relax_damping_time_us", 10, OpenClosed(0, 1e6), "us") * 1e-6;
   c.relax_bond_damping_ratio =

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "engine/core/types.h"
@@ -16,7 +17,9 @@ struct Blade {
   Vec3 face_normal = Vec3::UnitX();  // unit, in the x-z plane, pointing out of the blade
   Vec3 face_up = Vec3::UnitZ();      // unit, along the face away from the tip
   Vec3 velocity = Vec3::Zero();      // prescribed [m/s]
-  bool friction = true;              // Coulomb friction with the contact's mu
+  bool friction = true;              // Coulomb friction
+  // Its coefficient against the steel; unset, the fibre-fibre contacts' mu.
+  std::optional<double> mu;
   // Hard core: once a particle's centre comes closer to the blade than hard_gap (a fraction
   // of its radius: the fibre wall has collapsed), a linear spring of hard_stiffness [N/m]
   // adds to the van Wyk force, so that no centre is driven through the steel at impact

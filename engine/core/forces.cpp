@@ -480,8 +480,10 @@ void AccumulateWallForces(World& w, StepLosses& losses) {
 
 void AccumulateBladeForces(World& w, StepLosses& losses) {
   const Particles& p = w.particles;
-  const ContactParams law = w.contact.ForSurface();
+  const ContactParams surface_law = w.contact.ForSurface();
   for (Blade& blade : w.blades) {
+    ContactParams law = surface_law;
+    if (blade.mu) law.mu = *blade.mu;
     auto touch = [&](std::int64_t i) { return blade.Nearest(p.x[i]); };
     blade.reaction = AccumulateSurface(w, law, touch, blade.velocity, blade.history,
                                        w.physics.friction && blade.friction, blade.hard_stiffness,

@@ -266,6 +266,8 @@ std::string CrepingSettings::Validate() const {
     return fmt::format("blade_hard_stiffness = {} N/m: must lie in [0, 1e9]", blade_hard_stiffness);
   if (!(fibre_hard_stiffness >= 0.0 && fibre_hard_stiffness <= 1e9))
     return fmt::format("fibre_hard_stiffness = {} N/m: must lie in [0, 1e9]", fibre_hard_stiffness);
+  if (blade_friction_mu && !(*blade_friction_mu >= 0.0 && *blade_friction_mu <= 10.0))
+    return fmt::format("blade_friction_mu = {}: must lie in [0, 10]", *blade_friction_mu);
   if (std::string why = adhesion.Validate(); !why.empty()) return "adhesion." + why;
   return {};
 }
@@ -383,6 +385,7 @@ CrepingResult Crepe(Network& net, const SheetSpec& sheet, const CrepingSettings&
   Blade blade = Blade::AtAngle(Vec3(x_front + 0.1 * r_max, 0.0, s.tip_clearance), s.creping_angle);
   blade.velocity = Vec3(-s.yankee_speed, 0.0, 0.0);
   blade.hard_stiffness = s.blade_hard_stiffness;
+  blade.mu = s.blade_friction_mu;
   w.blades.push_back(blade);
   const Vec3 face_up = blade.face_up, face_normal = blade.face_normal;
   Reel reel;

@@ -32,6 +32,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,9 @@ struct CrepingSettings {
   // the blade pressed cross-sections through each other (centre distance down to 2% of
   // R_i + R_j).
   double fibre_hard_stiffness = 1.5e4;
+  // Coulomb friction of the sheet on the blade's steel; unset, the fibre-fibre contacts' mu.
+  // It resists the sheet's climb up the face, the one brake on it besides the reel's draw.
+  std::optional<double> blade_friction_mu;
   AdhesionSettings adhesion;
   // After the blade: the dust and the pieces left on the Yankee are removed, and the creped
   // sheet, free of blade and coating, comes to rest on a floor by dynamic relaxation (masses

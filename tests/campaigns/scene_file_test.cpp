@@ -190,6 +190,17 @@ TEST(SceneFile, OutOfRangeNamesTheAcceptedRange) {
                  "d.toml")
           .creping->adhesion.damping_ratio,
       0.5);
+  // The blade's friction: unset, the contacts' mu; set, within [0, 10].
+  const std::string blade_mu = InputErrorOf(
+      [] { ParseScene(std::string(kMinimal) + "[creping]\nblade_friction_mu = 12\n", "b.toml"); });
+  EXPECT_NE(blade_mu.find("b.toml: creping.blade_friction_mu"), std::string::npos) << blade_mu;
+  EXPECT_NE(blade_mu.find("[0, 10]"), std::string::npos) << blade_mu;
+  const auto blade_friction = [](const std::string& table) {
+    return ParseScene(std::string(kMinimal) + "[creping]\n" + table, "b.toml")
+        .creping->blade_friction_mu;
+  };
+  EXPECT_FALSE(blade_friction("").has_value());
+  EXPECT_DOUBLE_EQ(blade_friction("blade_friction_mu = 0.8\n").value_or(-1.0), 0.8);
 }
 
 TEST(SceneFile, NonPhysicalCombinationsAreRejected) {
@@ -266,6 +277,7 @@ TEST(SceneFile, AnEmptyCrepingTableGivesTheEngineDefaults) {
   EXPECT_DOUBLE_EQ(c.run_in_length, d.run_in_length);
   EXPECT_DOUBLE_EQ(c.blade_hard_stiffness, d.blade_hard_stiffness);
   EXPECT_DOUBLE_EQ(c.fibre_hard_stiffness, d.fibre_hard_stiffness);
+  EXPECT_EQ(c.blade_friction_mu, d.blade_friction_mu);
   EXPECT_DOUBLE_EQ(c.relax_mass_scale, d.relax_mass_scale);
   EXPECT_DOUBLE_EQ(c.relax_damping_time, d.relax_damping_time);
   EXPECT_DOUBLE_EQ(c.relax_bond_damping_ratio, d.relax_bond_damping_ratio);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 #include "engine/core/energy.h"
 #include "engine/core/simulation.h"
@@ -67,6 +68,45 @@ TEST(Blade, MovingBladeThrowsARestingSphereAtTwiceItsSpeedAndTheWorkBalances) {
   EXPECT_NEAR(w.blades[0].work, 2.0 * 8e-12 * V * V, 0.02 * 2.0 * 8e-12 * V * V);
   const double after = MeasureEnergy(w).Accounted(w.energy);
   EXPECT_NEAR(after, before, 1e-3 * w.blades[0].work);
+}
+
+// The tangential reaction of a sphere held against a blade face that slides past it, over
+// the normal reaction: the Coulomb coefficient, the blade's own where it has one.
+double SlidingFrictionRatio(std::optional<double> blade_mu) {
+  const double R = 16e-6, load = 1e-5;
+  World w;
+  w.cell.lo = Vec3(-1e-3, 0.0, -1e-3);
+  w.cell.hi = Vec3(1e-3, 0.2e-3, 1e-3);
+  w.cell.periodic_x = false;
+  w.physics.contacts = true;
+  w.physics.friction = true;
+  w.physics.applied_loads = true;
+  w.contact.mu = 0.3;
+  w.contact.restitution = 0.5;
+  w.contact.Derive();
+  w.particles.Add(Vec3(0.0, 0.1e-3, 0.0), R, 8e-10, 0);
+  w.particles.inv_inertia[0] = 0.0;  // no rolling: the contact slides throughout
+  // A vertical face just touching the sphere, sliding past it along its tip line at 3 m/s;
+  // the load presses the sphere onto it, and the sphere, a hundred times the generic
+  // particle's mass, stays far from catching up with the face (it would stick).
+  Blade blade = Blade::AtAngle(Vec3(R, 0.0, -10.0 * R), 90.0 * kDegree);
+  blade.velocity = Vec3(0.0, 3.0, 0.0);
+  blade.mu = blade_mu;
+  w.blades.push_back(blade);
+  w.applied_force.assign(1, Vec3(load, 0.0, 0.0));
+  w.applied_torque.assign(1, Vec3::Zero());
+  Simulation sim(w);
+  sim.Prepare();
+  for (int k = 0; k < 2000; ++k) sim.Step();
+  const Vec3 reaction = w.blades[0].reaction;
+  EXPECT_GT(reaction.x(), 0.5 * load);  // still pressed on the face
+  return -reaction.y() / reaction.x();  // the face drags the sphere along, the sphere holds it back
+}
+
+TEST(Blade, ASlidingContactCarriesTheBladesOwnFrictionCoefficient) {
+  EXPECT_NEAR(SlidingFrictionRatio(std::nullopt), 0.3, 1e-9);  // the contacts' mu
+  EXPECT_NEAR(SlidingFrictionRatio(0.8), 0.8, 1e-9);
+  EXPECT_NEAR(SlidingFrictionRatio(0.0), 0.0, 1e-12);
 }
 
 }  // namespace
