@@ -10,7 +10,8 @@ sheet's tilt show as they lie.
 With --speed the particles are coloured by their speed (0 to VMAX m/s, as paper Fig. 6 colours
 the creping impact) and every panel keeps the snapshot's own x, so that the impact frames of
 one run (DIR/snapshots/creping_frame_NNN.h5) line up along the Yankee; without it each panel
-starts at its sheet's first particle.
+starts at its sheet's first particle. A snapshot that holds a blade (creping's frames) shows
+its face as a grey line from the tip.
 """
 import sys
 
@@ -29,7 +30,9 @@ def read_panels(specs, with_speed):
         with h5py.File(path, "r") as f:
             x = f["particles/x"][:] * 1e6
             speed = np.linalg.norm(f["particles/v"][:], axis=1) if with_speed else None
-        panels.append((title or path, x, speed))
+            # tip x, z and the face's direction up, x and z (blades/state's columns 0-8)
+            blades = f["blades/state"][:][:, [0, 2, 6, 8]] if "blades/state" in f else []
+        panels.append((title or path, x, speed, [b * [1e6, 1e6, 1, 1] for b in blades]))
     return panels
 
 
@@ -48,15 +51,20 @@ def main(argv):
         sys.exit(__doc__)
     out, panels = args[0], read_panels(args[1:], speed_max is not None)
     if speed_max is None:
-        panels = [(t, x - [x[:, 0].min(), 0.0, 0.0], s) for t, x, s in panels]
-    left = min(x[:, 0].min() for _, x, _ in panels)
-    right = max(x[:, 0].max() for _, x, _ in panels)
+        panels = [(t, x - [x[:, 0].min(), 0.0, 0.0], s, [b - [x[:, 0].min(), 0, 0, 0] for b in bl])
+                  for t, x, s, bl in panels]
+    left = min(x[:, 0].min() for _, x, _, _ in panels)
+    right = max(x[:, 0].max() for _, x, _, _ in panels)
     width = right - left
-    heights = [max(np.ptp(x[:, 2]), 0.05 * width) + 40.0 for _, x, _ in panels]
+    heights = [max(np.ptp(x[:, 2]), 0.05 * width) + 40.0 for _, x, _, _ in panels]
     fig, axes = plt.subplots(len(panels), 1, squeeze=False,
                              figsize=(12, 1.0 + 12 * sum(heights) / width),
                              gridspec_kw={"height_ratios": heights})
-    for ax, (title, x, speed) in zip(axes[:, 0], panels):
+    for ax, (title, x, speed, blades) in zip(axes[:, 0], panels):
+        for tip_x, tip_z, up_x, up_z in blades:
+            reach = (x[:, 2].max() - tip_z) / up_z if up_z > 0 else 0.0
+            ax.plot([tip_x, tip_x + reach * up_x], [tip_z, tip_z + reach * up_z], color="0.5",
+                    linewidth=1.5, zorder=3)
         if speed_max is None:
             ax.scatter(x[:, 0], x[:, 2], s=0.2, color="tab:blue")
         else:

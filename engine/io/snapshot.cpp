@@ -32,6 +32,32 @@ std::vector<Vec3> Unflatten3(const std::vector<double>& d) {
   return out;
 }
 
+// A blade's row of blades/state: tip, face normal, face up, velocity (x y z each), friction
+// (0 or 1), mu (-1: the contacts'), hard stiffness, hard gap, work, reaction (x y z).
+constexpr std::size_t kBladeColumns = 20;
+
+void AppendBladeRow(const Blade& b, std::vector<double>& out) {
+  for (const Vec3& v : {b.tip, b.face_normal, b.face_up, b.velocity})
+    out.insert(out.end(), {v.x(), v.y(), v.z()});
+  out.insert(out.end(), {b.friction ? 1.0 : 0.0, b.mu.value_or(-1.0), b.hard_stiffness, b.hard_gap,
+                         b.work, b.reaction.x(), b.reaction.y(), b.reaction.z()});
+}
+
+Blade BladeOfRow(const double* s) {
+  Blade b;
+  b.tip = Vec3(s[0], s[1], s[2]);
+  b.face_normal = Vec3(s[3], s[4], s[5]);
+  b.face_up = Vec3(s[6], s[7], s[8]);
+  b.velocity = Vec3(s[9], s[10], s[11]);
+  b.friction = s[12] != 0.0;
+  if (s[13] >= 0.0) b.mu = s[13];
+  b.hard_stiffness = s[14];
+  b.hard_gap = s[15];
+  b.work = s[16];
+  b.reaction = Vec3(s[17], s[18], s[19]);
+  return b;
+}
+
 std::vector<double> FlattenQuats(const std::vector<Quat>& v) {
   std::vector<double> out;
   out.reserve(4 * v.size());
@@ -278,6 +304,14 @@ void WriteSnapshot(const World& w, const std::string& path, const PointFields& f
     for (std::size_t k = 0; k < w.walls.size(); ++k)
       f.WriteDoubles(fmt::format("walls/history_{}", k), Flatten(w.walls[k].history), 3);
 
+    // The blades (creping's impact frames): where each is, how it moves and its contacts.
+    f.CreateGroup("blades");
+    std::vector<double> blades;
+    for (const Blade& blade : w.blades) AppendBladeRow(blade, blades);
+    f.WriteDoubles("blades/state", blades, kBladeColumns);
+    for (std::size_t k = 0; k < w.blades.size(); ++k)
+      f.WriteDoubles(fmt::format("blades/history_{}", k), Flatten(w.blades[k].history), 3);
+
     if (w.physics.applied_loads) {
       f.WriteDoubles("particles/applied_force", Flatten(w.applied_force), 3);
       f.WriteDoubles("particles/applied_torque", Flatten(w.applied_torque), 3);
@@ -386,6 +420,14 @@ World ReadSnapshot(const std::string& path) {
     wall.friction = s[3] != 0.0; wall.work = s[4]; wall.reaction = Vec3(s[5], s[6], s[7]);
     wall.history = Unflatten3(f.ReadDoubles(fmt::format("walls/history_{}", k), 3));
     w.walls.push_back(std::move(wall));
+  }
+  if (f.Exists("blades/state")) {  // snapshots before 2026-12-07 kept no blades
+    const auto blades = f.ReadDoubles("blades/state", kBladeColumns);
+    for (std::size_t k = 0; k < blades.size() / kBladeColumns; ++k) {
+      Blade blade = BladeOfRow(blades.data() + kBladeColumns * k);
+      blade.history = Unflatten3(f.ReadDoubles(fmt::format("blades/history_{}", k), 3));
+      w.blades.push_back(std::move(blade));
+    }
   }
   if (w.physics.applied_loads) {
     w.applied_force = Unflatten3(f.ReadDoubles("particles/applied_force", 3));

@@ -1,10 +1,11 @@
 #include "engine/io/snapshot.h"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "engine/core/error.h"
 #include "engine/core/simulation.h"
@@ -96,6 +97,7 @@ TEST(Snapshot, RoundTripKeepsEveryField) {
   EXPECT_EQ(r.step, w.step);
   EXPECT_EQ(r.time, w.time);
   EXPECT_EQ(r.walls.size(), 1u);
+  EXPECT_TRUE(r.blades.empty());
   EXPECT_EQ(r.energy.work_gravity, w.energy.work_gravity);
   EXPECT_EQ(r.neighbours.ExportHistory().size(), w.neighbours.ExportHistory().size());
   std::ifstream xdmf(TempPath("fibrenet_roundtrip.xdmf"));
@@ -105,6 +107,41 @@ TEST(Snapshot, RoundTripKeepsEveryField) {
   w.energy.overlap_regained = 2.5e-9;  // the ledger's newest term
   io::WriteSnapshot(w, path);
   EXPECT_EQ(io::ReadSnapshot(path).energy.overlap_regained, 2.5e-9);
+}
+
+// A creping frame keeps its blade: where it is, how it moves, its friction and contacts.
+TEST(Snapshot, ABladeComesBackWhereItWas) {
+  World w = FallingFibres();
+  Blade blade = Blade::AtAngle(Vec3(1e-4, 0.0, 2e-6), 1.3);
+  blade.velocity = Vec3(-30.0, 0.0, 0.0);
+  blade.mu = 0.8;
+  blade.hard_stiffness = 1.2e5;
+  blade.work = 3e-7;
+  blade.reaction = Vec3(1e-3, -2e-4, 5e-4);
+  blade.history.assign(w.particles.size(), Vec3::Zero());
+  blade.history[2] = Vec3(1e-7, 0.0, -3e-8);
+  w.blades.push_back(blade);
+  w.blades.push_back(Blade::AtAngle(Vec3::Zero(), 1.5));  // friction off, the contacts' mu
+  w.blades.back().friction = false;
+  const std::string path = TempPath("fibrenet_blade.h5");
+  io::WriteSnapshot(w, path);
+  const World r = io::ReadSnapshot(path);
+  ASSERT_EQ(r.blades.size(), 2u);
+  const Blade& b = r.blades[0];
+  EXPECT_EQ(b.tip, blade.tip);
+  EXPECT_EQ(b.face_normal, blade.face_normal);
+  EXPECT_EQ(b.face_up, blade.face_up);
+  EXPECT_EQ(b.velocity, blade.velocity);
+  EXPECT_TRUE(b.friction);
+  EXPECT_EQ(b.mu, std::optional<double>(0.8));
+  EXPECT_EQ(b.hard_stiffness, blade.hard_stiffness);
+  EXPECT_EQ(b.hard_gap, blade.hard_gap);
+  EXPECT_EQ(b.work, blade.work);
+  EXPECT_EQ(b.reaction, blade.reaction);
+  EXPECT_EQ(b.history, blade.history);
+  EXPECT_FALSE(r.blades[1].friction);
+  EXPECT_FALSE(r.blades[1].mu.has_value());
+  EXPECT_EQ(r.blades[1].face_up, w.blades[1].face_up);
 }
 
 TEST(Snapshot, ContinuingFromASnapshotMatchesAnUninterruptedRun) {
