@@ -8,6 +8,7 @@
 
 #include "engine/core/energy.h"
 #include "engine/core/simulation.h"
+#include "tests/engine/one_sphere.h"
 
 namespace fibrenet {
 namespace {
@@ -41,14 +42,8 @@ TEST(Blade, NearestPointOnFaceTipAndBevel) {
 // One sphere at rest in front of a vertical blade that moves towards it at speed V.
 TEST(Blade, MovingBladeThrowsARestingSphereAtTwiceItsSpeedAndTheWorkBalances) {
   const double V = 30.0, R = 16e-6;
-  World w;
-  w.cell.lo = Vec3(-1e-3, 0.0, -1e-3);
-  w.cell.hi = Vec3(1e-3, 0.2e-3, 1e-3);
-  w.cell.periodic_x = false;
-  w.physics.contacts = true;
-  w.contact.restitution = 1.0;  // elastic: the sphere leaves at 2 V
-  w.contact.Derive();
-  w.particles.Add(Vec3(0.0, 0.1e-3, 100e-6), R, 8e-12, 0);
+  // Elastic contacts (restitution 1): the sphere leaves at 2 V.
+  World w = OneSphere(Vec3(0.0, 0.1e-3, 100e-6), R, 8e-12, 1.0, 1e-3, 0.2e-3);
   Blade blade = Blade::AtAngle(Vec3(R + 1e-6, 0.0, 0.0), 90.0 * kDegree);
   blade.velocity = Vec3(-V, 0.0, 0.0);
   blade.friction = false;
@@ -74,17 +69,10 @@ TEST(Blade, MovingBladeThrowsARestingSphereAtTwiceItsSpeedAndTheWorkBalances) {
 // the normal reaction: the Coulomb coefficient, the blade's own where it has one.
 double SlidingFrictionRatio(std::optional<double> blade_mu) {
   const double R = 16e-6, load = 1e-5;
-  World w;
-  w.cell.lo = Vec3(-1e-3, 0.0, -1e-3);
-  w.cell.hi = Vec3(1e-3, 0.2e-3, 1e-3);
-  w.cell.periodic_x = false;
-  w.physics.contacts = true;
+  World w = OneSphere(Vec3(0.0, 0.1e-3, 0.0), R, 8e-10, 0.5, 1e-3, 0.2e-3);
   w.physics.friction = true;
   w.physics.applied_loads = true;
   w.contact.mu = 0.3;
-  w.contact.restitution = 0.5;
-  w.contact.Derive();
-  w.particles.Add(Vec3(0.0, 0.1e-3, 0.0), R, 8e-10, 0);
   w.particles.inv_inertia[0] = 0.0;  // no rolling: the contact slides throughout
   // A vertical face just touching the sphere, sliding past it along its tip line at 3 m/s;
   // the load presses the sphere onto it, and the sphere, a hundred times the generic

@@ -19,6 +19,7 @@
 #include "engine/pipeline/reel.h"
 #include "engine/pipeline/sheet_bending.h"
 #include "engine/pipeline/tensile_test.h"
+#include "tests/engine/one_sphere.h"
 #include "tests/engine/pipeline/tiny_spec.h"
 
 namespace fibrenet::pipeline {
@@ -305,15 +306,9 @@ TEST(Creping, TheCrepedSheetsBendingDoesNotDependOnItsCurvatureLevels) {
 // force grows over the first half of the steps, slowly enough to be quasi-static.
 double SettledInFrontOfTheFace(double core, double load) {
   const double R = 16e-6;
-  World w;
-  w.cell.lo = Vec3(-0.2e-3, 0.0, -0.2e-3);
-  w.cell.hi = Vec3(0.2e-3, 0.1e-3, 0.2e-3);
-  w.cell.periodic_x = false;
-  w.physics.contacts = true;
+  // The generic tissue's restitution: the contacts damp the settling.
+  World w = OneSphere(Vec3(-R, 0.05e-3, R), R, 8e-12, 0.5, 0.2e-3, 0.1e-3);
   w.physics.applied_loads = true;
-  w.contact.restitution = 0.5;  // the generic tissue's: the contacts damp the settling
-  w.contact.Derive();
-  w.particles.Add(Vec3(-R, 0.05e-3, R), R, 8e-12, 0);
   w.applied_force.assign(1, Vec3::Zero());
   w.applied_torque.assign(1, Vec3::Zero());
   w.walls.assign(1, Wall{});
