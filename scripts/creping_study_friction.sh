@@ -3,10 +3,11 @@
 # "The brakes on the sheet leaving the blade"): the 5 mm x 2 mm strip of the generic tissue
 # (generic-tissue-creped.toml) pressed to 89 um, with fibre-fibre bonds of 25 mN on a 44.9
 # J/m^2 coating (7.5 MPa: a web the coating holds and the blade tears) and of 100 mN on a
-# 134.9 J/m^2 coating (2.5 MPa: a web lifted whole at the tip), creped at 85 deg, 30 m/s, run-in 500 um, with the sheet's friction on the
-# steel at each of MUS (default "1.0"; the contacts' 0.3 is the runs of "Strong webs on strong
-# coatings") and the reel's draw at each relaxation time of TAUS_US (default "2", the
-# scene's; shorter holds the drawn sheet closer to the reel speed).
+# 134.9 J/m^2 coating (2.5 MPa: a web lifted whole at the tip), creped at 85 deg, 30 m/s,
+# run-in 500 um, with the sheet's friction on the steel at each of MUS (default "1.0"; the
+# contacts' 0.3 is the runs of "Strong webs on strong coatings") and the reel's draw at each
+# relaxation time of TAUS_US (default "2", the scene's; shorter holds the drawn sheet closer
+# to the reel speed).
 # One thread a run, two side by side; a run whose JSON is already in OUT_DIR is kept.
 # Usage: MUS="0.3 1.0" TAUS_US="2 0.2" scripts/creping_study_friction.sh OUT_DIR [FIBRENET]
 #        (measured on 2 cores beside other jobs: forming 23 min, each pressing 30-40 min; a
@@ -35,4 +36,4 @@ for tau in ${TAUS_US:-2}; do
   done
 done
 wait_all
-echo "blade friction study written to $out"
+echo "blade friction and reel study written to $out"

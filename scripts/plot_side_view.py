@@ -51,8 +51,9 @@ def main(argv):
         sys.exit(__doc__)
     out, panels = args[0], read_panels(args[1:], speed_max is not None)
     if speed_max is None:
-        panels = [(t, x - [x[:, 0].min(), 0.0, 0.0], s, [b - [x[:, 0].min(), 0, 0, 0] for b in bl])
-                  for t, x, s, bl in panels]
+        starts = [x[:, 0].min() for _, x, _, _ in panels]
+        panels = [(t, x - [x0, 0.0, 0.0], s, [b - [x0, 0.0, 0.0, 0.0] for b in bl])
+                  for x0, (t, x, s, bl) in zip(starts, panels)]
     left = min(x[:, 0].min() for _, x, _, _ in panels)
     right = max(x[:, 0].max() for _, x, _, _ in panels)
     width = right - left

@@ -1,11 +1,11 @@
 #include "engine/io/snapshot.h"
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "engine/core/error.h"
 #include "engine/core/simulation.h"
