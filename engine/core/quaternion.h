@@ -104,10 +104,10 @@ inline Quat HalfRotation(const Quat& q) {
   return h;
 }
 
-// A rotation taking the x axis onto the unit vector `axis`, with no twist about it.
-inline Quat FrameAlongAxis(const Vec3& axis) {
-  return Quat::FromTwoVectors(Vec3::UnitX(), axis);
-}
+// A rotation taking the x axis onto the unit vector `axis`, with no twist about it. Defined
+// in quaternion.cpp: Eigen's FromTwoVectors brings in its SVD, whose templates cost every
+// file that includes this header ten seconds of compile time.
+Quat FrameAlongAxis(const Vec3& axis);
 
 // Left Jacobian of SO(3) at the rotation vector phi: exp(phi + delta) = exp(J_l(phi) delta)
 // exp(phi) to first order in delta. Its inverse maps a small world-side rotation gamma onto
