@@ -1,21 +1,32 @@
 #!/usr/bin/env bash
-# The sanitizer job: builds fibrenet and its tests with AddressSanitizer, LeakSanitizer and
-# UndefinedBehaviorSanitizer (gcc, -O1, assertions on) in build-asan/, runs the fast tests
-# under them, then fuzzes the scene and campaign readers (scripts/fuzz.sh). Exits non-zero on
-# any sanitizer report, failed test or fuzzer finding. About 25 minutes on 2 idle cores
-# (docs/reliability.md).
+# The sanitizer job: builds fibrenet, its tests and the fuzz targets with AddressSanitizer,
+# LeakSanitizer and UndefinedBehaviorSanitizer (clang, -O1, assertions on) in build-asan/,
+# runs the fast tests under them, then fuzzes the scene and campaign readers from the same
+# tree (scripts/fuzz.sh build-asan). Exits non-zero on any sanitizer report, failed test or
+# fuzzer finding. About 20 minutes on 2 idle cores (docs/reliability.md).
 # Usage: scripts/sanitize.sh     (after scripts/setup.sh, which installs the build dependencies;
-#                                 gcc's sanitizer runtimes come with build-essential)
+#                                 this script installs clang and its runtimes)
 #        FIBRENET_JOBS=N scripts/sanitize.sh   (parallel jobs; default: every core)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# clang, its runtime libraries (the sanitizers, libFuzzer), which clang only recommends, and
+# its OpenMP.
+packages=(clang libclang-rt-dev libomp-dev)
+source scripts/install_packages.sh
+install_packages "${packages[@]}"
+
 jobs="${FIBRENET_JOBS:-$(nproc)}"
 start=$SECONDS
-# Debug keeps the assertions; -O1 and line tables only (-g1, a third less compile time than -g)
-# are enough for readable sanitizer reports.
-flags="-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DFIBRENET_BUILD_BENCHMARKS=OFF \
+# clang compiles the sanitized code 1.3 to 2.3 times faster than gcc, and one tree then serves
+# the tests and the fuzzers: fuzzer-no-link gives every library the coverage libFuzzer steers
+# by. Debug keeps the assertions; -O1 and line tables only (-g1) are enough for readable
+# sanitizer reports.
+flags="-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined,fuzzer-no-link"
+flags+=" -fno-sanitize-recover=undefined"
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  -DFIBRENET_BUILD_BENCHMARKS=OFF -DFIBRENET_BUILD_FUZZERS=ON \
   -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS_DEBUG= \
   -DCMAKE_CXX_FLAGS_DEBUG= -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" > /dev/null
@@ -41,6 +52,7 @@ slow=(
   'VirtualTests\..*'
   'NetworkChecks\..*'
   'ZdCompression\.(StopsAtTheTargetPressure|TheSlowToeKeepsAPressedSheetQuasiStatic|ALoopStoppedAtALowPressureReturnsNoMoreWorkThanItTook|SteppedMovesShrinkWhereTheWebIsMet|ALightLoopIsDampedAsTheWebIs)'
+  'ZdCompression\.(TheTaperedApproachSlowsAsThePressureRises|FeedbackFromTheWindowStartSpeedsTheWindowUp|SteppedLoadingFollowsTheSlowContinuousCurve|AnOpenStripIsLoadedOverItsFootprintNotTheCell)'
   'LooseMat\..*'
   'Relief\.SphereRestsOnePocketDepthLowerOverAPocket'
   'Creping\..*'
@@ -59,4 +71,4 @@ ASAN_OPTIONS="detect_leaks=1:fast_unwind_on_malloc=0" \
   ctest --test-dir build-asan --output-on-failure -R "^$mpi_test\$"
 echo "== sanitize: tests $((SECONDS - start)) s"
 
-scripts/fuzz.sh
+scripts/fuzz.sh build-asan
