@@ -1,7 +1,7 @@
 # shellcheck shell=bash
 # install_packages PACKAGE...: installs the Debian packages that are missing (apt-get, with
-# sudo when not root, without recommends). Sourced by scripts/setup.sh, scripts/fuzz.sh
-# and scripts/compare/run_comparison.sh.
+# sudo when not root, without recommends). Sourced by scripts/setup.sh, scripts/sanitize.sh,
+# scripts/fuzz.sh and scripts/compare/run_comparison.sh.
 install_packages() {
   local missing=() p
   for p in "$@"; do

@@ -3,7 +3,7 @@
 # LeakSanitizer and UndefinedBehaviorSanitizer (clang, -O1, assertions on) in build-asan/,
 # runs the fast tests under them, then fuzzes the scene and campaign readers from the same
 # tree (scripts/fuzz.sh build-asan). Exits non-zero on any sanitizer report, failed test or
-# fuzzer finding. About 20 minutes on 2 idle cores (docs/reliability.md).
+# fuzzer finding. About 18 minutes on 2 idle cores (docs/reliability.md).
 # Usage: scripts/sanitize.sh     (after scripts/setup.sh, which installs the build dependencies;
 #                                 this script installs clang and its runtimes)
 #        FIBRENET_JOBS=N scripts/sanitize.sh   (parallel jobs; default: every core)
