@@ -11,7 +11,7 @@
 # One thread a run, two side by side; a run whose JSON is already in OUT_DIR is kept.
 # Usage: MUS="0.3 1.0" TAUS_US="2 0.2" scripts/creping_study_friction.sh OUT_DIR [FIBRENET]
 #        (measured on 2 cores beside other jobs: forming 23 min, each pressing 30-40 min; a
-#        creping run of the 5 mm strip 15-40 min alone, longer side by side)
+#        creping run of the 5 mm strip 28-32 min, two side by side)
 set -euo pipefail
 source "$(dirname "$0")/study_start.sh" campaigns/scenes/generic-tissue-creped.toml "$@"
 
