@@ -1,4 +1,4 @@
-"""Peel-ahead episodes on a long strip (docs/creping.md, "After the catch-up: the 7.5 mm strip"):
+"""Peel-ahead episodes on a long strip (docs/creping.md, "Peeled at the reel's speed"):
 for each run, the blade's MD load, the reel's pull along the face and the distance of the peel
 front ahead of the tip against the length of strip the blade has scraped, and a table of the
 episodes in which the front ran more than THRESHOLD_UM ahead of the tip (where each began and
@@ -57,8 +57,9 @@ def episodes(position_mm, front_um, threshold_um, fit_from_mm=0.0):
     until the front, stopped at the strip's far end, came within the threshold of the tip as the
     blade neared that end (no catch-up); closing, the rate at which the gap to the tip shrank
     per length scraped, fitted from the largest front (or fit_from_mm scraped, if later) to the
-    episode's end or to the front's reaching the far end. Past the last nonzero front the blade has passed the far end and the
-    front, with no web left ahead, reads 0; those samples are left out."""
+    episode's end or to the front's reaching the far end. Past the last nonzero front the blade
+    has passed the far end and the front, with no web left ahead, reads 0; those samples are
+    left out."""
     last = max((k for k, f in enumerate(front_um) if f > 0.0), default=-1)
     if last < 0:
         return []
@@ -103,8 +104,8 @@ def print_windows(folder, names, a):
             reel = sum(c["reel_force_N_per_m"][k] for k in inside) / len(inside)
             front = sorted(c["delaminated_length_um"][k] for k in inside)[len(inside) // 2]
             ratio = load ** 2 / (2.0 * TENSILE_STIFFNESS_N_PER_M * d["coating_toughness_J_per_m2"])
-            print(f"| {name} | {lo:g}-{hi:g} | {load:.0f} | {reel:.0f} | {front:.0f} | {ratio:.3g} | "
-                  f"{c['fibre_fibre_broken_fraction'][inside[-1]]:.3f} |")
+            print(f"| {name} | {lo:g}-{hi:g} | {load:.0f} | {reel:.0f} | {front:.0f} | "
+                  f"{ratio:.3g} | {c['fibre_fibre_broken_fraction'][inside[-1]]:.3f} |")
 
 
 def main():
