@@ -18,13 +18,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-from creping_runs import curve, stage
+from creping_runs import (curve, gathered_split, mean_over, median_over, stage,
+                          stored_energy_ratio)
 
 # wWEB_...: the study script's runs on the web's own coating; cWEB_eMODULUS_...: other coatings.
 RUN_NAME = re.compile(r"([wc])(\d+)(?:_e[\d.]+)?_mu([\d.]+)_tau([\d.]+)\.json$")
-# The webs' MD tensile stiffness S = E h, measured on their 2.5 mm strips' pressings
-# (docs/creping.md, "The generic tissue: a lift-off criterion").
-TENSILE_STIFFNESS_N_PER_M = 160410.0
 
 
 def runs_in(folder):
@@ -38,16 +36,6 @@ def runs_in(folder):
     if not any(own for runs in webs.values() for *_, own in runs):
         sys.exit(f"error: {folder}: no run wWEB_muMU_tauTAU.json")
     return {web: sorted(runs) for web, runs in sorted(webs.items())}
-
-
-def mean_over(times, values, t0, t1):
-    inside = [v for t, v in zip(times, values) if t0 <= t <= t1]
-    return sum(inside) / len(inside) if inside else float("nan")
-
-
-def median_over(times, values, t0, t1):
-    inside = sorted(v for t, v in zip(times, values) if t0 <= t <= t1)
-    return inside[len(inside) // 2] if inside else float("nan")
 
 
 def steady_band(folder, name):
@@ -71,15 +59,13 @@ def print_table(folder, webs, t0, t1):
             d = s["details"]
             c = curve(folder, name, "creping_bond_loss")
             load = mean_over(c["time_us"], c["blade_force_N_per_m"], t0, t1)
-            ratio = load ** 2 / (2.0 * TENSILE_STIFFNESS_N_PER_M * d["coating_toughness_J_per_m2"])
+            ratio = stored_energy_ratio(load, d["coating_toughness_J_per_m2"])
             print(f"| {web} mN, {d['coating_toughness_J_per_m2']:.1f} | {mu:g} | {tau:g} | "
                   f"{d['delaminated_length_um']:.0f} "
                   f"({median_over(c['time_us'], c['delaminated_length_um'], t0, t1):.0f}) | "
                   f"{d['bonds_broken_fraction']:.3f} | {d['dust_mass_fraction']:.3f} | "
                   f"{d['crepe_frequency_per_mm']:.2f} | {d['crepe_fold_count']:.0f} | "
-                  f"{steady_band(folder, name):.1f} | {d['crepe_gathered_ratio']:.3f} = "
-                  f"{d['crepe_curl_ratio']:.3f} x {d['crepe_fold_ratio']:.3f} x "
-                  f"{d['crepe_in_plane_ratio']:.3f} | {load:.0f} | "
+                  f"{steady_band(folder, name):.1f} | {gathered_split(d)} | {load:.0f} | "
                   f"{mean_over(c['time_us'], c['reel_force_N_per_m'], t0, t1):.0f} | "
                   f"{ratio:.3g} | {d['bulk_gain']:.2f} | {d['energy_balance_error']:.3f} | "
                   f"{s['wall_s']:.0f} |")

@@ -21,9 +21,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-from creping_runs import curve, stage
-from plot_creping_brakes import TENSILE_STIFFNESS_N_PER_M
-
+from creping_runs import (curve, gathered_split, mean_over, median_over, stage,
+                          stored_energy_ratio)
 
 
 def scraped_mm(times_us, speed, run_in_um):
@@ -100,10 +99,10 @@ def print_windows(folder, names, a):
             inside = [k for k, xk in enumerate(x) if lo <= xk <= hi]
             if not inside:
                 sys.exit(f"error: {name}: no sample scraped within {lo}-{hi} mm")
-            load = sum(c["blade_force_N_per_m"][k] for k in inside) / len(inside)
-            reel = sum(c["reel_force_N_per_m"][k] for k in inside) / len(inside)
-            front = sorted(c["delaminated_length_um"][k] for k in inside)[len(inside) // 2]
-            ratio = load ** 2 / (2.0 * TENSILE_STIFFNESS_N_PER_M * d["coating_toughness_J_per_m2"])
+            load = mean_over(x, c["blade_force_N_per_m"], lo, hi)
+            reel = mean_over(x, c["reel_force_N_per_m"], lo, hi)
+            front = median_over(x, c["delaminated_length_um"], lo, hi)
+            ratio = stored_energy_ratio(load, d["coating_toughness_J_per_m2"])
             print(f"| {name} | {lo:g}-{hi:g} | {load:.0f} | {reel:.0f} | {front:.0f} | "
                   f"{ratio:.3g} | {c['fibre_fibre_broken_fraction'][inside[-1]]:.3f} |")
 
@@ -142,16 +141,16 @@ def main():
         for ax, (key, _) in zip(axes, rows):
             ax.plot(x, c[key], lw=1, label=label)
         found = episodes(x, c["delaminated_length_um"], threshold, a.fit_from)
-        text = "; ".join(f"{a:.2f}-{'end' if b is None else f'{b:.2f}'} ({m:.0f}, "
-                         f"{'-' if math.isnan(c) else f'{c:.3f}'})"
-                         for a, b, m, c in found) or "none"
-        caught = sum(1 for _, b, _, _ in found if b is not None)
+        text = "; ".join(
+            f"{begin:.2f}-{'end' if end is None else f'{end:.2f}'} ({largest:.0f}, "
+            f"{'-' if math.isnan(closing) else f'{closing:.3f}'})"
+            for begin, end, largest, closing in found) or "none"
+        caught = sum(1 for _, end, _, _ in found if end is not None)
         print(f"| {name} | {d['coating_toughness_J_per_m2']:.1f} | {text} | {caught} | "
               f"{d['bonds_broken_fraction']:.3f} | {d['dust_mass_fraction']:.3f} | "
               f"{d['crepe_frequency_per_mm']:.2f} | {d['crepe_fold_count']:.0f} "
-              f"({d['crepe_profile_length_um'] * 1e-3:.2f}) | {d['crepe_gathered_ratio']:.3f} = "
-              f"{d['crepe_curl_ratio']:.3f} x {d['crepe_fold_ratio']:.3f} x "
-              f"{d['crepe_in_plane_ratio']:.3f} | {d['energy_balance_error']:.3f} | "
+              f"({d['crepe_profile_length_um'] * 1e-3:.2f}) | {gathered_split(d)} | "
+              f"{d['energy_balance_error']:.3f} | "
               f"{s['wall_s']:.0f} |")
     if a.window:
         print_windows(folder, names, a)
